@@ -1,0 +1,91 @@
+# carom -- build, test and run. `make help` lists the targets.
+
+CC      ?= cc
+BUILD   ?= build
+OPT     ?= -O2 -g
+WARN    := -std=c99 -pedantic -Wall -Wextra -Werror -Wdouble-promotion \
+           -ffp-contract=off
+# Extra -D switches for the library (see include/carom_config.h), e.g.
+#   make CAROM_FLAGS='-DCAROM_ENABLE_POLYGONS=0'
+CAROM_FLAGS ?=
+CPPFLAGS := -Iinclude $(CAROM_FLAGS)
+CFLAGS  := $(WARN) $(OPT)
+# Tools may use POSIX and libm; the core may not.
+TOOL_CFLAGS := $(CFLAGS) -D_POSIX_C_SOURCE=200809L -Itools
+
+LIB_SRC := $(wildcard src/*.c)
+LIB_OBJ := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
+LIB     := $(BUILD)/libcarom.a
+CLI     := $(BUILD)/carom
+TOOL_OBJ := $(BUILD)/tools/scene.o
+TEST_SRC := $(wildcard tests/test_*.c)
+TEST_BIN := $(BUILD)/carom_tests
+
+CHECK_CFLAGS = $(shell pkg-config --cflags check 2>/dev/null)
+CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
+
+SCENE ?= tools/scenes/default.scene
+
+.PHONY: all lib cli check unit cli-test check-symbols run clean help deps
+
+all: $(LIB) $(CLI)
+
+lib: $(LIB)
+cli: $(CLI)
+
+$(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h include/*.h) | $(BUILD)/obj
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
+
+$(LIB): $(LIB_OBJ)
+	rm -f $@
+	ar rcs $@ $^
+
+$(BUILD)/tools/%.o: tools/%.c $(wildcard tools/*.h include/*.h) | $(BUILD)/tools
+	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -c $< -o $@
+
+$(CLI): $(BUILD)/tools/carom_cli.o $(TOOL_OBJ) $(LIB)
+	$(CC) $^ -o $@ -lm
+
+$(BUILD)/obj $(BUILD)/tools $(BUILD)/tests:
+	mkdir -p $@
+
+# ---- tests -------------------------------------------------------------------
+
+deps:
+	@sh tools/ensure-deps.sh check
+
+$(TEST_BIN): $(TEST_SRC) tests/test_util.h $(TOOL_OBJ) $(LIB) | $(BUILD)/tests
+	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -Wno-double-promotion $(CHECK_CFLAGS) \
+	    $(TEST_SRC) $(TOOL_OBJ) $(LIB) -o $@ $(CHECK_LIBS) -lm
+
+unit: deps
+	@$(MAKE) --no-print-directory $(TEST_BIN)
+	CK_DEFAULT_TIMEOUT=120 $(TEST_BIN)
+
+cli-test: $(CLI)
+	sh tests/cli_test.sh $(CLI)
+
+# The library must not allocate, and must call no libm function but sqrtf:
+# inspect the undefined symbols of the built archive.
+check-symbols: $(LIB)
+	sh tools/check-symbols.sh $(LIB)
+
+check: deps
+	@$(MAKE) --no-print-directory all
+	@$(MAKE) --no-print-directory check-symbols
+	@$(MAKE) --no-print-directory unit
+	@$(MAKE) --no-print-directory cli-test
+
+# ---- the main job -----------------------------------------------------------
+
+run: $(CLI)
+	@sh tools/run-default.sh $(CLI) $(SCENE)
+
+clean:
+	rm -rf $(BUILD)
+
+help:
+	@echo "make            build $(LIB) and $(CLI)"
+	@echo "make check      unit tests (Check), symbol check, CLI tests"
+	@echo "make run        run $(SCENE) and summarise it"
+	@echo "make clean      remove $(BUILD)/"

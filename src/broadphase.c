@@ -1,0 +1,111 @@
+/*
+ * broadphase.c -- candidate pairs by sort and sweep.
+ *
+ * Each body's bounding box (grown by a margin that covers the step's
+ * motion) is sorted by its lower x bound; a sweep then tests each box only
+ * against the boxes that start before it ends. Cost: O(n log n) for the
+ * sort plus O(n + k) for the sweep with k overlapping x intervals, instead
+ * of the n (n - 1) / 2 of all pairs.
+ *
+ * The sort is a bottom-up merge sort in caller storage: stable, so ties
+ * keep body order and the result never depends on anything but the input.
+ * Pairs come out sorted by (a, b), the order the solver visits them in.
+ */
+#include "internal.h"
+
+static void cr_sort_proxies(cr_proxy *a, cr_proxy *tmp, int n)
+{
+    int width, i;
+    cr_proxy *src = a, *dst = tmp;
+    for (width = 1; width < n; width *= 2) {
+        for (i = 0; i < n; i += 2 * width) {
+            int lo = i, mid = i + width < n ? i + width : n;
+            int hi = i + 2 * width < n ? i + 2 * width : n;
+            int l = lo, r = mid, k = lo;
+            while (l < mid && r < hi) {
+                /* take from the right only if strictly smaller: stable */
+                if (cr_lt(src[r].lo_x, src[l].lo_x))
+                    dst[k++] = src[r++];
+                else
+                    dst[k++] = src[l++];
+            }
+            while (l < mid)
+                dst[k++] = src[l++];
+            while (r < hi)
+                dst[k++] = src[r++];
+        }
+        { cr_proxy *t = src; src = dst; dst = t; }
+    }
+    if (src != a)
+        for (i = 0; i < n; ++i)
+            a[i] = src[i];
+}
+
+static int cr_pair_less(cr_pair x, cr_pair y)
+{
+    return x.a < y.a || (x.a == y.a && x.b < y.b);
+}
+
+static void cr_sort_pairs(cr_pair *a, cr_pair *tmp, int n)
+{
+    int width, i;
+    cr_pair *src = a, *dst = tmp;
+    for (width = 1; width < n; width *= 2) {
+        for (i = 0; i < n; i += 2 * width) {
+            int lo = i, mid = i + width < n ? i + width : n;
+            int hi = i + 2 * width < n ? i + 2 * width : n;
+            int l = lo, r = mid, k = lo;
+            while (l < mid && r < hi) {
+                if (cr_pair_less(src[r], src[l]))
+                    dst[k++] = src[r++];
+                else
+                    dst[k++] = src[l++];
+            }
+            while (l < mid)
+                dst[k++] = src[l++];
+            while (r < hi)
+                dst[k++] = src[r++];
+        }
+        { cr_pair *t = src; src = dst; dst = t; }
+    }
+    if (src != a)
+        for (i = 0; i < n; ++i)
+            a[i] = src[i];
+}
+
+/* Fill w->pairs; returns the number found (stored ones plus dropped ones). */
+int cr_broadphase(carom_world *w, float margin)
+{
+    int i, j, n = w->body_count, found = 0;
+    int cap = w->def.max_pairs;
+
+    for (i = 0; i < n; ++i) {
+        cr_body_bounds(&w->bodies[i], margin, &w->proxies[i]);
+        w->proxies[i].body = i;
+    }
+    cr_sort_proxies(w->proxies, w->proxy_tmp, n);
+
+    w->pair_count = 0;
+    for (i = 0; i < n; ++i) {
+        const cr_proxy *p = &w->proxies[i];
+        for (j = i + 1; j < n && cr_le(w->proxies[j].lo_x, p->hi_x); ++j) {
+            const cr_proxy *q = &w->proxies[j];
+            int a = p->body, b = q->body;
+            if (w->bodies[a].type == CAROM_BODY_STATIC &&
+                w->bodies[b].type == CAROM_BODY_STATIC)
+                continue;
+            if (cr_lt(q->hi_y, p->lo_y) || cr_lt(p->hi_y, q->lo_y))
+                continue;
+            ++found;
+            if (w->pair_count < cap) {
+                cr_pair pr;
+                pr.a = a < b ? a : b;
+                pr.b = a < b ? b : a;
+                w->pairs[w->pair_count++] = pr;
+            }
+        }
+    }
+    w->pairs_dropped = found - w->pair_count;
+    cr_sort_pairs(w->pairs, w->pair_tmp, w->pair_count);
+    return found;
+}

@@ -1,0 +1,139 @@
+/*
+ * internal.h -- data structures shared by the pipeline modules (internal).
+ *
+ * Pipeline of one step (world.c, carom_world_step):
+ *   integrate.c    velocity Verlet drift of every dynamic body
+ *   broadphase.c   candidate pairs: sort and sweep over bounding boxes
+ *   narrowphase.c  contact manifolds: circle/polygon pairs, SAT + clipping
+ *   solver.c       impulses: restitution, friction, resting contacts,
+ *                  penetration projection
+ *   world.c        finish the step: events, time
+ */
+#ifndef CAROM_INTERNAL_H
+#define CAROM_INTERNAL_H
+
+#include "arith.h"
+#include "carom.h"
+
+/* ---- bodies ------------------------------------------------------------- */
+
+typedef struct cr_body {
+    int type;  /* carom_body_type */
+    int shape; /* carom_shape_type */
+    float radius;                                /* circle */
+    int count;                                   /* polygon */
+    cr_v2 verts[CAROM_MAX_POLYGON_VERTICES];     /* body frame, about centroid */
+    cr_v2 norms[CAROM_MAX_POLYGON_VERTICES];     /* outward unit edge normals */
+    cr_v2 local_center; /* centroid in the frame of the definition's origin */
+    float extent;       /* largest distance from the centroid to the shape */
+
+    cr_v2 x;    /* centre of mass, world */
+    cr_rot q;   /* rotation */
+    cr_v2 vel;  /* velocity of the centre */
+    float w;    /* angular velocity */
+    cr_v2 acc;  /* acceleration from forces at the current state (a0) */
+    float alpha;/* angular acceleration from torques at the current state */
+    cr_v2 acc_c;   /* acceleration from last step's resting contact forces */
+    float alpha_c; /* and its angular part (see solver.c) */
+
+    float m, inv_m, I, inv_I;
+    float restitution, friction;
+    cr_v2 force; /* constant force and torque */
+    float torque;
+
+    /* solver scratch: position projection accumulated this step, and
+     * velocities saved while priming */
+    cr_v2 dx;
+    float dtheta;
+    cr_v2 vel_saved;
+    float w_saved;
+} cr_body;
+
+/* ---- broadphase --------------------------------------------------------- */
+
+typedef struct cr_proxy {
+    float lo_x, hi_x, lo_y, hi_y;
+    int body;
+} cr_proxy;
+
+typedef struct cr_pair {
+    int a, b; /* a < b */
+} cr_pair;
+
+/* ---- contacts ----------------------------------------------------------- */
+
+typedef struct cr_point {
+    cr_v2 p;        /* world point, midway between the two surfaces */
+    float sep;      /* signed distance along the normal (< 0: overlap) */
+    unsigned id;    /* feature id, for matching across steps */
+    cr_v2 ra, rb;   /* from each centre of mass to p */
+    float pn, pt;   /* accumulated normal and tangent impulses */
+    float mass_n, mass_t;
+    float target;   /* normal velocity the solver aims for (restitution) */
+    float vn0;      /* normal velocity before the solve */
+} cr_point;
+
+typedef struct cr_manifold {
+    int a, b;       /* body indices, a < b */
+    cr_v2 n;        /* unit normal from a towards b */
+    int count;      /* 0..CAROM_MAX_MANIFOLD_POINTS */
+    cr_point pts[CAROM_MAX_MANIFOLD_POINTS];
+    float restitution, friction;
+    /* 2-point manifolds: normal effective-mass matrix [k11 k12; k12 k22],
+     * and whether it is well enough conditioned to solve as a block */
+    float k11, k12, k22;
+    int block;
+} cr_manifold;
+
+/* ---- the world ---------------------------------------------------------- */
+
+struct carom_world {
+    carom_world_def def;
+    carom_method method;
+    long steps;
+
+    cr_body *bodies;
+    int body_count;
+
+    cr_proxy *proxies, *proxy_tmp; /* max_bodies each */
+    cr_pair *pairs, *pair_tmp;     /* max_pairs each */
+    int pair_count;
+    int pairs_dropped;
+
+    cr_manifold *manifolds, *prev_manifolds; /* max_pairs each */
+    int manifold_count, prev_manifold_count;
+
+    int needs_prime; /* bodies added since the contact forces were solved */
+
+    carom_event *events; /* max_events */
+    int event_count;
+    int events_dropped;
+};
+
+/* ---- module entry points ------------------------------------------------ */
+
+/* shape.c */
+carom_status cr_body_build(const carom_body_def *def, cr_body *out);
+void cr_body_bounds(const cr_body *b, float margin, cr_proxy *out);
+carom_vec2 cr_body_origin(const cr_body *b);
+
+/* integrate.c */
+int cr_integrate(carom_world *w, float dt);
+void cr_body_forces(const carom_world *w, int id, const cr_body *b,
+                    cr_v2 *acc, float *alpha);
+cr_rot cr_rot_advance(cr_rot q, float angle);
+
+/* broadphase.c */
+int cr_broadphase(carom_world *w, float margin);
+
+/* narrowphase.c */
+int cr_collide(const cr_body *a, const cr_body *b, float margin,
+               cr_manifold *m);
+
+/* solver.c */
+void cr_solver_prepare(carom_world *w, int resting_only);
+void cr_solver_velocities(carom_world *w, int iterations);
+void cr_solver_positions(carom_world *w);
+void cr_solver_store(carom_world *w);
+
+#endif /* CAROM_INTERNAL_H */

@@ -1,0 +1,502 @@
+/*
+ * scene.c -- parser of carom scene files. See docs/scene-format.md.
+ */
+#include "scene.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SCENE_MAX_LINE 4096
+#define SCENE_DEFAULT_STEPS 600L
+#define SCENE_MAX_STEPS 1000000000L
+
+typedef struct parser {
+    const char *name;
+    int line;
+    char *err;
+    size_t errlen;
+} parser;
+
+static int fail(parser *p, const char *fmt, ...)
+{
+    va_list ap;
+    int n = snprintf(p->err, p->errlen, "%s:%d: ", p->name, p->line);
+    if (n < 0 || (size_t)n >= p->errlen)
+        return -1;
+    va_start(ap, fmt);
+    vsnprintf(p->err + n, p->errlen - (size_t)n, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+/* A finite float written in full (no trailing junk). */
+static int parse_float(parser *p, const char *key, const char *s, float *out)
+{
+    char *end;
+    double d;
+    if (*s == '\0')
+        return fail(p, "%s: missing number", key);
+    errno = 0;
+    d = strtod(s, &end);
+    if (end == s || *end != '\0')
+        return fail(p, "%s: malformed number '%s'", key, s);
+    if (!isfinite(d) || errno == ERANGE || fabs(d) > 3.0e38)
+        return fail(p, "%s: '%s' is not a finite float", key, s);
+    *out = (float)d;
+    return 0;
+}
+
+static int parse_long(parser *p, const char *key, const char *s, long *out)
+{
+    char *end;
+    long v;
+    if (*s == '\0')
+        return fail(p, "%s: missing integer", key);
+    errno = 0;
+    v = strtol(s, &end, 10);
+    if (end == s || *end != '\0' || errno == ERANGE)
+        return fail(p, "%s: malformed integer '%s'", key, s);
+    *out = v;
+    return 0;
+}
+
+/* "x,y" */
+static int parse_vec(parser *p, const char *key, const char *s, carom_vec2 *out)
+{
+    char buf[256];
+    char *comma;
+    size_t n = strlen(s);
+    if (n >= sizeof buf)
+        return fail(p, "%s: vector too long", key);
+    memcpy(buf, s, n + 1);
+    comma = strchr(buf, ',');
+    if (!comma || strchr(comma + 1, ','))
+        return fail(p, "%s: malformed vector '%s' (want x,y)", key, s);
+    *comma = '\0';
+    if (parse_float(p, key, buf, &out->x) || parse_float(p, key, comma + 1, &out->y))
+        return -1;
+    return 0;
+}
+
+/* "x,y;x,y;..." */
+static int parse_vertices(parser *p, const char *s, carom_body_def *d)
+{
+    char buf[SCENE_MAX_LINE];
+    char *tok, *save = NULL;
+    int n = 0;
+    size_t len = strlen(s);
+    if (len >= sizeof buf)
+        return fail(p, "vertices: too long");
+    memcpy(buf, s, len + 1);
+    if (len == 0 || buf[len - 1] == ';' || buf[0] == ';' || strstr(buf, ";;"))
+        return fail(p, "vertices: malformed list '%s' (want x,y;x,y;...)", s);
+    for (tok = strtok_r(buf, ";", &save); tok; tok = strtok_r(NULL, ";", &save)) {
+        if (n >= CAROM_MAX_POLYGON_VERTICES)
+            return fail(p, "vertices: more than %d vertices",
+                        CAROM_MAX_POLYGON_VERTICES);
+        if (parse_vec(p, "vertices", tok, &d->vertices[n]))
+            return -1;
+        ++n;
+    }
+    if (n < 3)
+        return fail(p, "vertices: a polygon needs at least 3 vertices, got %d", n);
+    d->vertex_count = n;
+    return 0;
+}
+
+/* Split "key=value"; returns 0 and points key/value into tok. */
+static int split_kv(parser *p, char *tok, char **key, char **value)
+{
+    char *eq = strchr(tok, '=');
+    if (!eq)
+        return fail(p, "expected key=value, got '%s'", tok);
+    *eq = '\0';
+    *key = tok;
+    *value = eq + 1;
+    if (**key == '\0')
+        return fail(p, "empty key in '=%s'", *value);
+    return 0;
+}
+
+static int seen_before(parser *p, unsigned *mask, unsigned bit, const char *key)
+{
+    if (*mask & bit)
+        return fail(p, "%s given twice", key);
+    *mask |= bit;
+    return 0;
+}
+
+static int parse_world(parser *p, char *rest, scene *s)
+{
+    char *tok, *save = NULL;
+    unsigned seen = 0;
+    for (tok = strtok_r(rest, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
+        char *key, *val;
+        if (split_kv(p, tok, &key, &val))
+            return -1;
+        if (strcmp(key, "gravity") == 0) {
+            if (seen_before(p, &seen, 1u, key) || parse_vec(p, key, val, &s->world.gravity))
+                return -1;
+        } else if (strcmp(key, "dt") == 0) {
+            if (seen_before(p, &seen, 2u, key) || parse_float(p, key, val, &s->world.dt))
+                return -1;
+            if (!(s->world.dt > 0.0f))
+                return fail(p, "dt: must be > 0, got %s", val);
+        } else if (strcmp(key, "steps") == 0) {
+            if (seen_before(p, &seen, 4u, key) || parse_long(p, key, val, &s->steps))
+                return -1;
+            if (s->steps < 0 || s->steps > SCENE_MAX_STEPS)
+                return fail(p, "steps: must be in [0, %ld], got %s", SCENE_MAX_STEPS, val);
+        } else if (strcmp(key, "method") == 0) {
+            if (seen_before(p, &seen, 8u, key))
+                return -1;
+            if (carom_method_from_name(val, &s->world.method) != CAROM_OK)
+                return fail(p, "method: unknown method '%s' (discrete, events)", val);
+        } else if (strcmp(key, "rest-speed") == 0) {
+            if (seen_before(p, &seen, 16u, key) || parse_float(p, key, val, &s->world.rest_speed))
+                return -1;
+            if (s->world.rest_speed < 0.0f)
+                return fail(p, "rest-speed: must be >= 0, got %s", val);
+        } else if (strcmp(key, "slop") == 0) {
+            if (seen_before(p, &seen, 32u, key) || parse_float(p, key, val, &s->world.linear_slop))
+                return -1;
+            if (s->world.linear_slop < 0.0f)
+                return fail(p, "slop: must be >= 0, got %s", val);
+        } else if (strcmp(key, "velocity-iterations") == 0 ||
+                   strcmp(key, "position-iterations") == 0 ||
+                   strcmp(key, "max-events") == 0 ||
+                   strcmp(key, "max-pairs") == 0) {
+            long v;
+            unsigned bit = key[0] == 'v' ? 64u : key[0] == 'p' ? 128u
+                           : strcmp(key, "max-events") == 0 ? 256u : 512u;
+            if (seen_before(p, &seen, bit, key) || parse_long(p, key, val, &v))
+                return -1;
+            if (v < (bit == 512u ? 0 : bit >= 256u ? 1 : 0) || v > (1L << 24))
+                return fail(p, "%s: out of range, got %s", key, val);
+            if (bit == 64u) s->world.velocity_iterations = (int)v;
+            else if (bit == 128u) s->world.position_iterations = (int)v;
+            else if (bit == 256u) s->world.max_events = (int)v;
+            else s->world.max_pairs = (int)v;
+        } else {
+            return fail(p, "world: unknown key '%s'", key);
+        }
+    }
+    return 0;
+}
+
+enum {
+    K_RADIUS = 1u << 0, K_HALF = 1u << 1, K_VERTS = 1u << 2, K_POS = 1u << 3,
+    K_ANGLE = 1u << 4, K_VEL = 1u << 5, K_OMEGA = 1u << 6, K_DENSITY = 1u << 7,
+    K_MASS = 1u << 8, K_REST = 1u << 9, K_FRIC = 1u << 10, K_FORCE = 1u << 11,
+    K_TORQUE = 1u << 12
+};
+
+static int parse_body(parser *p, char *rest, scene *s)
+{
+    char *tok, *save = NULL;
+    unsigned seen = 0;
+    scene_body sb;
+    carom_body_def *d = &sb.def;
+    carom_vec2 half = {0.0f, 0.0f};
+    carom_status st;
+
+    memset(&sb, 0, sizeof sb);
+    *d = carom_default_body_def();
+    sb.line = p->line;
+
+    tok = strtok_r(rest, " \t", &save);
+    if (!tok)
+        return fail(p, "body: missing shape (circle, box or polygon)");
+    if (strcmp(tok, "circle") == 0) {
+        sb.kind = "circle";
+        d->shape = CAROM_SHAPE_CIRCLE;
+    } else if (strcmp(tok, "box") == 0) {
+        sb.kind = "box";
+        d->shape = CAROM_SHAPE_POLYGON;
+    } else if (strcmp(tok, "polygon") == 0) {
+        sb.kind = "polygon";
+        d->shape = CAROM_SHAPE_POLYGON;
+    } else {
+        return fail(p, "body: unknown shape '%s' (circle, box or polygon)", tok);
+    }
+
+    for (tok = strtok_r(NULL, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
+        char *key, *val;
+        if (strcmp(tok, "static") == 0) {
+            d->type = CAROM_BODY_STATIC;
+            continue;
+        }
+        if (strcmp(tok, "dynamic") == 0) {
+            d->type = CAROM_BODY_DYNAMIC;
+            continue;
+        }
+        if (split_kv(p, tok, &key, &val))
+            return -1;
+        if (strcmp(key, "radius") == 0) {
+            if (sb.kind[0] != 'c')
+                return fail(p, "radius: only circles have a radius");
+            if (seen_before(p, &seen, K_RADIUS, key) || parse_float(p, key, val, &d->radius))
+                return -1;
+            if (!(d->radius > 0.0f))
+                return fail(p, "radius: must be > 0, got %s", val);
+        } else if (strcmp(key, "half-extents") == 0) {
+            if (sb.kind[0] != 'b')
+                return fail(p, "half-extents: only boxes have half-extents");
+            if (seen_before(p, &seen, K_HALF, key) || parse_vec(p, key, val, &half))
+                return -1;
+            if (!(half.x > 0.0f) || !(half.y > 0.0f))
+                return fail(p, "half-extents: both must be > 0, got %s", val);
+        } else if (strcmp(key, "vertices") == 0) {
+            if (sb.kind[0] != 'p')
+                return fail(p, "vertices: only polygons have vertices");
+            if (seen_before(p, &seen, K_VERTS, key) || parse_vertices(p, val, d))
+                return -1;
+        } else if (strcmp(key, "position") == 0) {
+            if (seen_before(p, &seen, K_POS, key) || parse_vec(p, key, val, &d->position))
+                return -1;
+        } else if (strcmp(key, "angle") == 0) {
+            if (seen_before(p, &seen, K_ANGLE, key) || parse_float(p, key, val, &sb.angle))
+                return -1;
+            if (fabsf(sb.angle) > 1.0e5f)
+                return fail(p, "angle: |angle| must be <= 1e5 rad, got %s", val);
+        } else if (strcmp(key, "velocity") == 0) {
+            if (seen_before(p, &seen, K_VEL, key) || parse_vec(p, key, val, &d->velocity))
+                return -1;
+        } else if (strcmp(key, "angular-velocity") == 0) {
+            if (seen_before(p, &seen, K_OMEGA, key) ||
+                parse_float(p, key, val, &d->angular_velocity))
+                return -1;
+        } else if (strcmp(key, "density") == 0) {
+            if (seen_before(p, &seen, K_DENSITY, key) || parse_float(p, key, val, &d->density))
+                return -1;
+            if (!(d->density > 0.0f))
+                return fail(p, "density: must be > 0, got %s", val);
+        } else if (strcmp(key, "mass") == 0) {
+            if (seen_before(p, &seen, K_MASS, key) || parse_float(p, key, val, &d->mass))
+                return -1;
+            if (!(d->mass > 0.0f))
+                return fail(p, "mass: must be > 0, got %s", val);
+        } else if (strcmp(key, "restitution") == 0) {
+            if (seen_before(p, &seen, K_REST, key) || parse_float(p, key, val, &d->restitution))
+                return -1;
+            if (!(d->restitution >= 0.0f && d->restitution <= 1.0f))
+                return fail(p, "restitution: must be in [0, 1], got %s", val);
+        } else if (strcmp(key, "friction") == 0) {
+            if (seen_before(p, &seen, K_FRIC, key) || parse_float(p, key, val, &d->friction))
+                return -1;
+            if (!(d->friction >= 0.0f))
+                return fail(p, "friction: must be >= 0, got %s", val);
+        } else if (strcmp(key, "force") == 0) {
+            if (seen_before(p, &seen, K_FORCE, key) || parse_vec(p, key, val, &d->force))
+                return -1;
+        } else if (strcmp(key, "torque") == 0) {
+            if (seen_before(p, &seen, K_TORQUE, key) || parse_float(p, key, val, &d->torque))
+                return -1;
+        } else {
+            return fail(p, "body: unknown key '%s'", key);
+        }
+    }
+    if ((seen & K_DENSITY) && (seen & K_MASS))
+        return fail(p, "give density= or mass=, not both");
+    if (sb.kind[0] == 'b') {
+        if (!(seen & K_HALF))
+            return fail(p, "box: missing half-extents=");
+        carom_body_def_set_box(d, half.x, half.y);
+    }
+    if (sb.kind[0] == 'p' && !(seen & K_VERTS))
+        return fail(p, "polygon: missing vertices=");
+    d->rotation = carom_rot_from_angle(sb.angle);
+    st = carom_body_def_validate(d);
+    if (st != CAROM_OK)
+        return fail(p, "body %d: %s", s->body_count, carom_status_string(st));
+
+    if (s->body_count == s->body_capacity) {
+        int cap = s->body_capacity ? 2 * s->body_capacity : 16;
+        scene_body *nb = (scene_body *)realloc(s->bodies, (size_t)cap * sizeof *nb);
+        if (!nb)
+            return fail(p, "out of memory");
+        s->bodies = nb;
+        s->body_capacity = cap;
+    }
+    s->bodies[s->body_count++] = sb;
+    return 0;
+}
+
+int scene_parse(const char *name, const char *text, scene *s, char *err,
+                size_t errlen)
+{
+    parser p;
+    const char *cur = text;
+    int have_header = 0, have_world = 0;
+    char line[SCENE_MAX_LINE];
+
+    memset(s, 0, sizeof *s);
+    s->world = carom_default_world_def();
+    s->steps = SCENE_DEFAULT_STEPS;
+    p.name = name;
+    p.line = 0;
+    p.err = err;
+    p.errlen = errlen;
+
+    while (*cur) {
+        const char *nl = strchr(cur, '\n');
+        size_t len = nl ? (size_t)(nl - cur) : strlen(cur);
+        char *hash, *start, *end, *word, *rest;
+        ++p.line;
+        if (len >= sizeof line) {
+            fail(&p, "line longer than %d characters", SCENE_MAX_LINE - 1);
+            goto error;
+        }
+        memcpy(line, cur, len);
+        line[len] = '\0';
+        cur = nl ? nl + 1 : cur + len;
+
+        hash = strchr(line, '#');
+        if (hash)
+            *hash = '\0';
+        for (start = line; *start && isspace((unsigned char)*start); ++start) {}
+        end = start + strlen(start);
+        while (end > start && isspace((unsigned char)end[-1]))
+            *--end = '\0';
+        if (*start == '\0')
+            continue;
+        for (word = start; *word; ++word)
+            if (*word == '\t')
+                *word = ' ';
+        word = start;
+        rest = strchr(start, ' ');
+        if (rest)
+            *rest++ = '\0';
+        else
+            rest = start + strlen(start);
+
+        if (!have_header) {
+            if (strcmp(word, "carom-scene") != 0) {
+                fail(&p, "expected header 'carom-scene 1', got '%s'", word);
+                goto error;
+            }
+            while (*rest == ' ')
+                ++rest;
+            if (strcmp(rest, "1") != 0) {
+                fail(&p, "unsupported scene version '%s' (this reader knows 1)", rest);
+                goto error;
+            }
+            have_header = 1;
+        } else if (strcmp(word, "world") == 0) {
+            if (have_world) {
+                fail(&p, "second world line");
+                goto error;
+            }
+            if (s->body_count > 0) {
+                fail(&p, "the world line must come before the bodies");
+                goto error;
+            }
+            have_world = 1;
+            if (parse_world(&p, rest, s))
+                goto error;
+        } else if (strcmp(word, "body") == 0) {
+            if (parse_body(&p, rest, s))
+                goto error;
+        } else {
+            fail(&p, "unknown line type '%s' (world, body)", word);
+            goto error;
+        }
+    }
+    if (!have_header) {
+        p.line = p.line > 0 ? p.line : 1;
+        fail(&p, "empty scene: missing header 'carom-scene 1'");
+        goto error;
+    }
+    return 0;
+error:
+    scene_free(s);
+    return -1;
+}
+
+int scene_load(const char *path, scene *s, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "rb");
+    char *text;
+    long size;
+    size_t got;
+    int rc;
+    memset(s, 0, sizeof *s);
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 ||
+        fseek(f, 0, SEEK_SET) != 0) {
+        snprintf(err, errlen, "%s: cannot read", path);
+        fclose(f);
+        return -1;
+    }
+    text = (char *)malloc((size_t)size + 1);
+    if (!text) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        fclose(f);
+        return -1;
+    }
+    got = fread(text, 1, (size_t)size, f);
+    fclose(f);
+    text[got] = '\0';
+    if (strlen(text) != got) {
+        snprintf(err, errlen, "%s: contains a NUL byte (not a text file?)", path);
+        free(text);
+        return -1;
+    }
+    rc = scene_parse(path, text, s, err, errlen);
+    free(text);
+    return rc;
+}
+
+void scene_free(scene *s)
+{
+    free(s->bodies);
+    s->bodies = NULL;
+    s->body_count = s->body_capacity = 0;
+}
+
+int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
+                      size_t errlen)
+{
+    carom_world_def wd = s->world;
+    size_t bytes;
+    carom_status st;
+    int i;
+    wd.max_bodies = s->body_count > 0 ? s->body_count : 1;
+    st = carom_world_def_validate(&wd);
+    if (st != CAROM_OK) {
+        snprintf(err, errlen, "world: %s", carom_status_string(st));
+        return -1;
+    }
+    bytes = carom_world_buffer_size(&wd);
+    *mem = malloc(bytes ? bytes : 1);
+    if (!*mem) {
+        snprintf(err, errlen, "out of memory (%zu bytes)", bytes);
+        return -1;
+    }
+    st = carom_world_init(w, &wd, *mem, bytes);
+    for (i = 0; st == CAROM_OK && i < s->body_count; ++i) {
+        st = carom_world_add_body(*w, &s->bodies[i].def, NULL);
+        if (st != CAROM_OK) {
+            snprintf(err, errlen, "line %d: body %d: %s", s->bodies[i].line, i,
+                     carom_status_string(st));
+            free(*mem);
+            *mem = NULL;
+            return -1;
+        }
+    }
+    if (st != CAROM_OK) {
+        snprintf(err, errlen, "world: %s", carom_status_string(st));
+        free(*mem);
+        *mem = NULL;
+        return -1;
+    }
+    return 0;
+}

@@ -1,0 +1,52 @@
+/*
+ * scene.h -- the carom scene file format (docs/scene-format.md).
+ *
+ * A tool, not part of the core: it allocates. Shared by build/carom and the
+ * Box2D harness, so both engines read every scene the same way.
+ */
+#ifndef CAROM_SCENE_H
+#define CAROM_SCENE_H
+
+#include <stddef.h>
+
+#include "carom.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct scene_body {
+    carom_body_def def;
+    float angle;   /* radians, as written (def.rotation is derived) */
+    int line;      /* line number in the file */
+    const char *kind; /* "circle", "box" or "polygon" */
+} scene_body;
+
+typedef struct scene {
+    carom_world_def world;
+    long steps;           /* steps= (default 600) */
+    scene_body *bodies;
+    int body_count;
+    int body_capacity;
+} scene;
+
+/* Parse `path` into *s. Returns 0 on success; otherwise fills err with
+ * "FILE:LINE: problem" and returns -1 (nothing to free). */
+int scene_load(const char *path, scene *s, char *err, size_t errlen);
+
+/* Parse from a string (for tests); `name` is used in messages. */
+int scene_parse(const char *name, const char *text, scene *s, char *err,
+                size_t errlen);
+
+void scene_free(scene *s);
+
+/* Build a world for the scene in freshly allocated memory (*mem, to be
+ * free()d by the caller). Returns 0, or -1 with a message in err. */
+int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
+                      size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* CAROM_SCENE_H */
