@@ -55,7 +55,7 @@ deps:
 	@sh tools/ensure-deps.sh check
 
 $(TEST_BIN): $(TEST_SRC) tests/test_util.h $(TOOL_OBJ) $(LIB) | $(BUILD)/tests
-	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -Wno-double-promotion $(CHECK_CFLAGS) \
+	$(CC) $(CPPFLAGS) -Isrc $(TOOL_CFLAGS) -Wno-double-promotion $(CHECK_CFLAGS) \
 	    $(TEST_SRC) $(TOOL_OBJ) $(LIB) -o $@ $(CHECK_LIBS) -lm
 
 unit: deps

@@ -113,6 +113,8 @@ int cr_integrate(carom_world *w, float dt)
             continue;
         if (!cr_forces(w, i, b, &acc1, &alpha1))
             ok = 0;
+        b->vel_saved = b->vel; /* start-of-step velocity, for the solver */
+        b->w_saved = b->w;
         b->vel = cr_vadd(b->vel, cr_vscale(half_dt, cr_vadd(b->acc, acc1)));
         b->acc = acc1;
 #if CAROM_ENABLE_ROTATION

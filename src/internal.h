@@ -41,8 +41,8 @@ typedef struct cr_body {
     cr_v2 force; /* constant force and torque */
     float torque;
 
-    /* solver scratch: position projection accumulated this step, and
-     * velocities saved while priming */
+    /* solver scratch: position projection accumulated this step, and the
+     * velocities at the start of the step (before the force kick) */
     cr_v2 dx;
     float dtheta;
     cr_v2 vel_saved;
@@ -71,6 +71,8 @@ typedef struct cr_point {
     float mass_n, mass_t;
     float target;   /* normal velocity the solver aims for (restitution) */
     float vn0;      /* normal velocity before the solve */
+    float approach; /* approach speed at the instant of contact (>= 0) */
+    float rest_frac;/* share of the impulse that is a resting force */
 } cr_point;
 
 typedef struct cr_manifold {

@@ -39,6 +39,10 @@
  * block (1 - cos^2 of the angle between the two points' impulse rows). */
 #define CR_BLOCK_MIN_DET 1.0e-3f
 
+/* Approach speed at the start of a step, as a fraction of rest_speed, below
+ * which a contact counts as having been at rest (solver residue). */
+#define CR_REST_TOL_FRACTION 0.01f
+
 static cr_v2 cr_tangent(cr_v2 n) { return cr_v(n.y, cr_neg(n.x)); }
 
 static float cr_effective_mass(const cr_body *A, const cr_body *B, cr_v2 ra,
@@ -71,6 +75,56 @@ static void cr_apply(cr_body *A, cr_body *B, cr_v2 ra, cr_v2 rb, cr_v2 P)
     (void)ra;
     (void)rb;
 #endif
+}
+
+/*
+ * Which share of a non-bouncing point's impulse is a resting force, to be
+ * carried into the next drift (cr_solver_store)? The approach speed the
+ * solver cancels has two sources: motion the bodies already had at the
+ * start of the step (an impact: the impulse stops it once), and the kick
+ * the step's own forces gave them (a force: it acts again next step). With
+ * approach = -vn0 after the kick and before = the approach at the start of
+ * the step, the share is 1 - before / approach. A body at rest in a stack
+ * has before ~ 0 (solver residue below CR_REST_TOL_FRACTION of rest_speed
+ * counts as 0) and share 1; a ball landing softly at 0.4 m/s under gravity
+ * has share |g| dt / 0.4, so the force it keeps is its weight, not more.
+ */
+static float cr_resting_fraction(const cr_body *A, const cr_body *B,
+                                 const cr_point *p, cr_v2 n, float rest_speed)
+{
+    cr_v2 vb = cr_vadd(B->vel_saved, cr_vcross_sv(B->w_saved, p->rb));
+    cr_v2 va = cr_vadd(A->vel_saved, cr_vcross_sv(A->w_saved, p->ra));
+    float before = cr_neg(cr_vdot(cr_vsub(vb, va), n));
+    float approach = cr_neg(p->vn0);
+    if (cr_le(before, cr_mul(CR_REST_TOL_FRACTION, rest_speed)) ||
+        cr_le(approach, 0.0f))
+        return 1.0f;
+    return cr_max(0.0f, cr_sub(1.0f, cr_div(before, approach)));
+}
+
+/*
+ * Approach speed at the instant of contact. The overlap-based step finds
+ * an impact only after the bodies have moved a depth d = -sep past it,
+ * still accelerating towards each other at a_close, so the speed at the
+ * end of the step is too high: v^2 = v_c^2 + 2 a_close d. Bouncing with
+ * e v instead of e v_c, and then being projected out of the overlap, would
+ * pump energy in (a ball with e = 0.8 hops forever at ~0.5 m/s). With v_c
+ * the kinetic energy after the bounce is exactly (e v_c)^2 m / 2.
+ */
+static float cr_contact_speed(const cr_body *A, const cr_body *B,
+                              const cr_point *p, cr_v2 n)
+{
+    float v = cr_neg(p->vn0), depth = cr_neg(p->sep), a_close, v2;
+    cr_v2 ab, aa;
+    if (!cr_gt(v, 0.0f))
+        return 0.0f;
+    if (!cr_gt(depth, 0.0f))
+        return v;
+    ab = cr_vadd(B->acc, cr_vcross_sv(B->alpha, p->rb));
+    aa = cr_vadd(A->acc, cr_vcross_sv(A->alpha, p->ra));
+    a_close = cr_max(0.0f, cr_neg(cr_vdot(cr_vsub(ab, aa), n)));
+    v2 = cr_sub(cr_mul(v, v), cr_mul(cr_mul(2.0f, a_close), depth));
+    return cr_gt(v2, 0.0f) ? cr_sqrt(v2) : 0.0f;
 }
 
 /* Copy last step's accumulated impulses onto points with the same ids.
@@ -131,12 +185,13 @@ void cr_solver_prepare(carom_world *w, int resting_only)
             p->mass_n = cr_effective_mass(A, B, p->ra, p->rb, m->n);
             p->mass_t = cr_effective_mass(A, B, p->ra, p->rb, t);
             p->vn0 = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
-            p->target = !resting_only && cr_lt(p->vn0, cr_neg(rest))
-                            ? cr_neg(cr_mul(m->restitution, p->vn0))
+            p->approach = cr_contact_speed(A, B, p, m->n);
+            p->target = !resting_only && cr_gt(p->approach, rest)
+                            ? cr_mul(m->restitution, p->approach)
                             : 0.0f;
-            if (!cr_eq(p->pn, 0.0f) || !cr_eq(p->pt, 0.0f))
-                cr_apply(A, B, p->ra, p->rb,
-                         cr_vadd(cr_vscale(p->pn, m->n), cr_vscale(p->pt, t)));
+            p->rest_frac = cr_gt(p->target, 0.0f)
+                               ? 0.0f
+                               : cr_resting_fraction(A, B, p, m->n, rest);
         }
         m->block = 0;
         if (m->count == 2) {
@@ -157,6 +212,19 @@ void cr_solver_prepare(carom_world *w, int resting_only)
             det = cr_sub(cr_mul(m->k11, m->k22), cr_mul(m->k12, m->k12));
             m->block = cr_gt(det, cr_mul(CR_BLOCK_MIN_DET,
                                          cr_mul(m->k11, m->k22)));
+        }
+    }
+
+    /* warm start only now: every vn0 above is a pre-solve velocity */
+    for (i = 0; i < w->manifold_count; ++i) {
+        cr_manifold *m = &w->manifolds[i];
+        cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
+        cr_v2 t = cr_tangent(m->n);
+        for (k = 0; k < m->count; ++k) {
+            cr_point *p = &m->pts[k];
+            if (!cr_eq(p->pn, 0.0f) || !cr_eq(p->pt, 0.0f))
+                cr_apply(A, B, p->ra, p->rb,
+                         cr_vadd(cr_vscale(p->pn, m->n), cr_vscale(p->pt, t)));
         }
     }
 }
@@ -343,7 +411,7 @@ void cr_solver_positions(carom_world *w)
 
 /*
  * Keep this step's manifolds (and impulses) for warm starting the next, and
- * turn the impulses of resting points (those that got no restitution) into
+ * turn the resting share of each point's impulse (cr_resting_fraction) into
  * the constant contact accelerations the next drift uses: a resting
  * contact's impulse over a step is its force times dt.
  */
@@ -362,10 +430,10 @@ void cr_solver_store(carom_world *w)
         for (k = 0; k < m->count; ++k) {
             cr_point *p = &m->pts[k];
             cr_v2 F;
-            if (cr_gt(p->target, 0.0f))
+            if (cr_eq(p->rest_frac, 0.0f))
                 continue; /* an impact, not a resting force */
-            F = cr_vscale(inv_dt, cr_vadd(cr_vscale(p->pn, m->n),
-                                          cr_vscale(p->pt, t)));
+            F = cr_vscale(cr_mul(inv_dt, p->rest_frac),
+                          cr_vadd(cr_vscale(p->pn, m->n), cr_vscale(p->pt, t)));
             A->acc_c = cr_vmadd(A->acc_c, cr_neg(A->inv_m), F);
             B->acc_c = cr_vmadd(B->acc_c, B->inv_m, F);
 #if CAROM_ENABLE_ROTATION

@@ -7,30 +7,42 @@
  */
 #include "internal.h"
 
-/* pi/2 split in two floats (Cody-Waite): HI holds the leading 24 bits, LO
- * the rest, so x - k*HI is exact for moderate k. */
-#define CR_PIO2_HI 1.57079637050628662109375f
-#define CR_PIO2_LO (-4.37113900018624283e-8f)
+/* pi/2 split in three floats (Cody-Waite): P1 has 8 significant bits and
+ * P2 12, so k * P1 and k * P2 are exact for the quadrant counts k < 2^12
+ * that angles up to CR_TRIG_MAX_ARG give, and x - k pi/2 loses nothing. */
+#define CR_PIO2_1 1.5703125f
+#define CR_PIO2_2 4.837512969970703125e-4f
+#define CR_PIO2_3 7.549790126404332e-8f
 #define CR_TWO_OVER_PI 0.636619772367581343f
 #define CR_PI 3.14159265358979323846f
 #define CR_PIO4 0.785398163397448309616f
 
-/* Beyond this the quadrant count no longer fits comfortably and the float
- * angle has no fractional bits left anyway. */
-#define CR_TRIG_MAX_ARG 1.0e7f
+/* Largest |angle| reduced exactly (quadrant count below 2^12). Larger
+ * angles are first brought into range by whole turns, with the rounding
+ * error of that subtraction. */
+#define CR_TRIG_MAX_ARG 6.0e3f
+/* Beyond this a float angle has no fractional bits worth reducing. */
+#define CR_TRIG_HUGE_ARG 1.0e9f
 
 carom_rot carom_rot_from_angle(float angle)
 {
     float k, r, r2, s, c, tmp;
     long quadrant;
 
-    if (!cr_finite(angle) || cr_gt(cr_abs(angle), CR_TRIG_MAX_ARG))
+    if (!cr_finite(angle) || cr_gt(cr_abs(angle), CR_TRIG_HUGE_ARG))
         return cr_rot_identity();
+    if (cr_gt(cr_abs(angle), CR_TRIG_MAX_ARG)) {
+        /* whole turns off: q = round(angle / 2 pi) */
+        float turns = cr_mul(angle, 0.159154943091895336f);
+        long q = (long)(cr_ge(turns, 0.0f) ? cr_add(turns, 0.5f) : cr_sub(turns, 0.5f));
+        angle = cr_sub(angle, cr_mul((float)q, 6.28318530717958648f));
+    }
     /* nearest multiple of pi/2 */
     k = cr_mul(angle, CR_TWO_OVER_PI);
     quadrant = (long)(cr_ge(k, 0.0f) ? cr_add(k, 0.5f) : cr_sub(k, 0.5f));
     k = (float)quadrant;
-    r = cr_sub(cr_sub(angle, cr_mul(k, CR_PIO2_HI)), cr_mul(k, CR_PIO2_LO));
+    r = cr_sub(cr_sub(cr_sub(angle, cr_mul(k, CR_PIO2_1)), cr_mul(k, CR_PIO2_2)),
+               cr_mul(k, CR_PIO2_3));
 
     /* |r| <= pi/4: Taylor series in Horner form; the first omitted terms
      * are below 2e-9, under half an ulp of the results. */

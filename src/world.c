@@ -299,7 +299,7 @@ static void cr_record_impacts(carom_world *w, float t)
         float approach = 0.0f, impulse = 0.0f;
         carom_event *e;
         for (k = 0; k < m->count; ++k) {
-            approach = cr_max(approach, cr_neg(m->pts[k].vn0));
+            approach = cr_max(approach, m->pts[k].approach);
             impulse = cr_add(impulse, m->pts[k].pn);
         }
         if (!cr_gt(approach, w->def.rest_speed))

@@ -1,0 +1,378 @@
+/*
+ * test_solver.c -- collision response against the design note's formulas
+ * (corrected as in ERRATA.md 1-3), conservation laws, and resting contact.
+ */
+#include "test_util.h"
+
+/*
+ * Two circles of radius 1/2 approach head-on along x and touch exactly at
+ * the end of step 1 (dt = 1, no gravity): a contact on a step boundary,
+ * where the discrete method makes no time-step error. Returns the
+ * velocities after step 1.
+ */
+static void head_on(double ma, double mb, double va, double vb, double e,
+                    double *va1, double *vb1)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int a, b;
+    wd.gravity.y = 0.0f;
+    wd.dt = 1.0f;
+    wd.rest_speed = 0.0f;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    bd.radius = 0.5f;
+    bd.friction = 0.0f;
+    bd.restitution = (float)e;
+    bd.mass = (float)ma;
+    bd.position.x = (float)(-0.5 - va);
+    bd.velocity.x = (float)va;
+    a = tw_add(&t, &bd);
+    bd.mass = (float)mb;
+    bd.position.x = (float)(0.5 - vb);
+    bd.velocity.x = (float)vb;
+    b = tw_add(&t, &bd);
+    tw_steps(&t, 1);
+    *va1 = tw_state(&t, a).velocity.x;
+    *vb1 = tw_state(&t, b).velocity.x;
+    ck_assert_close(tw_state(&t, a).velocity.y, 0.0, 1e-7);
+    tw_free(&t);
+}
+
+static const double restitutions[] = {0.0, 0.25, 0.5, 0.8, 1.0};
+#define N_E (int)(sizeof restitutions / sizeof restitutions[0])
+
+/* Sanity case 1: m_A = m_B, v_A = -v_B = v: p_A^1 = -c_r p, p_B^1 = c_r p. */
+START_TEST(test_note_case1_equal_masses_opposite_velocities)
+{
+    int i;
+    for (i = 0; i < N_E; ++i) {
+        double e = restitutions[i], m = 1.5, v = 2.0, va, vb;
+        head_on(m, m, v, -v, e, &va, &vb);
+        ck_assert_close(m * va, -e * m * v, 1e-6);
+        ck_assert_close(m * vb, e * m * v, 1e-6);
+    }
+}
+END_TEST
+
+/* Case 2: m_A = m_B: p_A^1 = (1-c_r)/2 p_A + (1+c_r)/2 p_B, and mirrored. */
+START_TEST(test_note_case2_equal_masses_weighted_average)
+{
+    int i;
+    for (i = 0; i < N_E; ++i) {
+        double e = restitutions[i], m = 0.7, va0 = 3.0, vb0 = -0.5, va, vb;
+        double pa = m * va0, pb = m * vb0;
+        head_on(m, m, va0, vb0, e, &va, &vb);
+        ck_assert_close(m * va, (1 - e) / 2 * pa + (1 + e) / 2 * pb, 1e-6);
+        ck_assert_close(m * vb, (1 + e) / 2 * pa + (1 - e) / 2 * pb, 1e-6);
+    }
+}
+END_TEST
+
+/* Case 3 (corrected, ERRATA 2): p_A = -p_B = p, any masses:
+ * p_A^1 = -c_r p, p_B^1 = c_r p (the centre-of-mass frame). */
+START_TEST(test_note_case3_opposite_momenta_any_masses_corrected)
+{
+    int i;
+    for (i = 0; i < N_E; ++i) {
+        double e = restitutions[i], ma = 2.0, mb = 5.0, p = 6.0, va, vb;
+        head_on(ma, mb, p / ma, -p / mb, e, &va, &vb);
+        ck_assert_close(ma * va, -e * p, 1e-6);
+        ck_assert_close(mb * vb, e * p, 1e-6);
+    }
+}
+END_TEST
+
+/* Case 4 (corrected): c_r = 1: p_A^1 = ((m_A - m_B) p_A + 2 m_A p_B) / M. */
+START_TEST(test_note_case4_elastic_corrected)
+{
+    double ma = 2.0, mb = 5.0, va0 = 3.0, vb0 = -1.0, va, vb;
+    double pa = ma * va0, pb = mb * vb0, M = ma + mb;
+    head_on(ma, mb, va0, vb0, 1.0, &va, &vb);
+    ck_assert_close(ma * va, ((ma - mb) * pa + 2 * ma * pb) / M, 1e-6);
+    ck_assert_close(mb * vb, ((mb - ma) * pb + 2 * mb * pa) / M, 1e-6);
+    /* kinetic energy is conserved */
+    ck_assert_close(0.5 * ma * va * va + 0.5 * mb * vb * vb,
+                    0.5 * ma * va0 * va0 + 0.5 * mb * vb0 * vb0, 1e-6);
+}
+END_TEST
+
+/* Case 5: c_r = 0: p_A^1 = (p_A + p_B) m_A / M: they move together. */
+START_TEST(test_note_case5_inelastic_move_together)
+{
+    double ma = 1.0, mb = 9.0, va0 = 4.0, vb0 = 0.5, va, vb;
+    double pa = ma * va0, pb = mb * vb0, M = ma + mb;
+    head_on(ma, mb, va0, vb0, 0.0, &va, &vb);
+    ck_assert_close(ma * va, (pa + pb) * ma / M, 1e-6);
+    ck_assert_close(mb * vb, (pa + pb) * mb / M, 1e-6);
+    ck_assert_close(va, vb, 1e-6);
+}
+END_TEST
+
+/* The general corrected momentum form of ERRATA 2 over a grid of masses. */
+START_TEST(test_corrected_momentum_form_for_unequal_masses)
+{
+    static const double ratios[] = {1.0, 10.0, 100.0};
+    int i, j;
+    for (i = 0; i < 3; ++i) {
+        for (j = 0; j < N_E; ++j) {
+            double ma = 1.0, mb = ratios[i], e = restitutions[j];
+            double va0 = 1.5, vb0 = -2.0, va, vb, M = ma + mb;
+            double pa = ma * va0, pb = mb * vb0;
+            head_on(ma, mb, va0, vb0, e, &va, &vb);
+            ck_assert_close(ma * va, (ma * (pa + pb) + e * (ma * pb - mb * pa)) / M, 1e-5);
+            ck_assert_close(mb * vb, (mb * (pa + pb) + e * (mb * pa - ma * pb)) / M, 1e-5);
+            /* Newton's law: separation speed = e * approach speed */
+            ck_assert_close(vb - va, e * (va0 - vb0), 1e-5);
+        }
+    }
+}
+END_TEST
+
+/*
+ * The note's first stepping example, dt = 1: A at -1 with v = 1, B at 1 with
+ * v = -1, as points meeting at the origin at t^1. As circles of R = 1 the
+ * centres start at -2 and 2 so that the surfaces meet where the points do.
+ * Then v_A^1 = -c_r, v_B^1 = c_r and x^2 = -c_r, c_r (shifted by R).
+ */
+START_TEST(test_note_stepping_example1_contact_on_step_boundary)
+{
+    static const double crs[] = {0.0, 0.5, 1.0};
+    int i;
+    for (i = 0; i < 3; ++i) {
+        double cr = crs[i];
+        carom_world_def wd = carom_default_world_def();
+        carom_body_def bd = carom_default_body_def();
+        tw t;
+        int a, b;
+        wd.gravity.y = 0.0f;
+        wd.dt = 1.0f;
+        wd.max_bodies = 2;
+        t = tw_make(&wd);
+        bd.radius = 1.0f;
+        bd.friction = 0.0f;
+        bd.restitution = (float)cr;
+        bd.position.x = -2.0f;
+        bd.velocity.x = 1.0f;
+        a = tw_add(&t, &bd);
+        bd.position.x = 2.0f;
+        bd.velocity.x = -1.0f;
+        b = tw_add(&t, &bd);
+        tw_steps(&t, 1);
+        ck_assert_close(tw_state(&t, a).position.x, -1.0, 1e-6);
+        ck_assert_close(tw_state(&t, b).position.x, 1.0, 1e-6);
+        ck_assert_close(tw_state(&t, a).velocity.x, -cr, 1e-6);
+        ck_assert_close(tw_state(&t, b).velocity.x, cr, 1e-6);
+        tw_steps(&t, 1);
+        ck_assert_close(tw_state(&t, a).position.x, -1.0 - cr, 1e-6);
+        ck_assert_close(tw_state(&t, b).position.x, 1.0 + cr, 1e-6);
+        tw_free(&t);
+    }
+}
+END_TEST
+
+/* A box hit off-centre by a circle: linear momentum and angular momentum
+ * about the origin are conserved (no gravity, no friction). */
+START_TEST(test_off_centre_polygon_impact_conserves_momenta)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int ids[2], i, k;
+    double P0[2] = {0, 0}, L0 = 0, P1[2] = {0, 0}, L1 = 0;
+    wd.gravity.y = 0.0f;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    carom_body_def_set_box(&bd, 1.0f, 0.5f);
+    bd.restitution = 0.7f;
+    bd.friction = 0.0f;
+    ids[0] = tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    bd.radius = 0.25f;
+    bd.mass = 0.5f;
+    bd.restitution = 0.7f;
+    bd.friction = 0.0f;
+    bd.position.x = -0.6f;
+    bd.position.y = 2.0f;
+    bd.velocity.y = -6.0f;
+    ids[1] = tw_add(&t, &bd);
+    for (k = 0; k < 2; ++k) {
+        for (i = 0; i < 2; ++i) {
+            carom_body_state s = tw_state(&t, ids[i]);
+            float m, I;
+            carom_body_get_mass(t.w, ids[i], &m, &I);
+            (k ? P1 : P0)[0] += m * s.velocity.x;
+            (k ? P1 : P0)[1] += m * s.velocity.y;
+            *(k ? &L1 : &L0) += m * ((double)s.center.x * s.velocity.y -
+                                     (double)s.center.y * s.velocity.x) +
+                                I * s.angular_velocity;
+        }
+        if (k == 0)
+            tw_steps(&t, 60);
+    }
+    ck_assert_close(P1[0], P0[0], 1e-5);
+    ck_assert_close(P1[1], P0[1], 1e-5);
+    ck_assert_close(L1, L0, 1e-5);
+    /* the box really was hit off-centre: it spins */
+    ck_assert(fabs(tw_state(&t, ids[0]).angular_velocity) > 0.1);
+    tw_free(&t);
+}
+END_TEST
+
+START_TEST(test_restitution_mixing_takes_the_larger)
+{
+    double va, vb;
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int a, b;
+    (void)va; (void)vb;
+    wd.gravity.y = 0.0f;
+    wd.dt = 1.0f;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    bd.friction = 0.0f;
+    bd.restitution = 0.2f;
+    bd.position.x = -1.5f;
+    bd.velocity.x = 1.0f;
+    a = tw_add(&t, &bd);
+    bd.restitution = 0.9f;
+    bd.position.x = 1.5f;
+    bd.velocity.x = -1.0f;
+    b = tw_add(&t, &bd);
+    tw_steps(&t, 1);
+    ck_assert_close(tw_state(&t, a).velocity.x, -0.9, 1e-6);
+    ck_assert_close(tw_state(&t, b).velocity.x, 0.9, 1e-6);
+    tw_free(&t);
+}
+END_TEST
+
+static int add_ground(tw *t, float friction)
+{
+    carom_body_def g = carom_default_body_def();
+    g.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&g, 20.0f, 0.5f);
+    g.position.y = -0.5f;
+    g.friction = friction;
+    return tw_add(t, &g);
+}
+
+/* Five unit boxes stacked exactly touching stay within 1 mm for 10 s. */
+START_TEST(test_stack_of_five_boxes_holds_within_1mm_for_10s)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int i, k, ids[5];
+    double worst = 0.0;
+    wd.max_bodies = 6;
+    t = tw_make(&wd);
+    add_ground(&t, 0.6f);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    for (i = 0; i < 5; ++i) {
+        bd.position.y = 0.5f + (float)i;
+        ids[i] = tw_add(&t, &bd);
+    }
+    for (k = 0; k < 600; ++k) {
+        tw_steps(&t, 1);
+        for (i = 0; i < 5; ++i) {
+            carom_body_state s = tw_state(&t, ids[i]);
+            double dx = s.position.x, dy = s.position.y - (0.5 + i);
+            double d = sqrt(dx * dx + dy * dy);
+            if (d > worst)
+                worst = d;
+        }
+    }
+    ck_assert_msg(worst < 1e-3, "stack moved %g m", worst);
+    for (i = 0; i < 5; ++i) {
+        carom_body_state s = tw_state(&t, ids[i]);
+        ck_assert(fabs(s.velocity.y) < 1e-3 && fabs(s.angular_velocity) < 1e-3);
+    }
+    tw_free(&t);
+}
+END_TEST
+
+/* A ball with e = 0.8 dropped from 2 m comes to rest on the ground. */
+START_TEST(test_ball_with_restitution_below_one_comes_to_rest)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_body_state s;
+    tw t;
+    int ball, k, bounces = 0, last_bounce = -1;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    add_ground(&t, 0.0f);
+    bd.radius = 0.25f;
+    bd.position.y = 2.25f;
+    bd.restitution = 0.8f;
+    ball = tw_add(&t, &bd);
+    for (k = 0; k < 1200; ++k) {
+        int n;
+        tw_steps(&t, 1);
+        carom_world_events(t.w, &n);
+        if (n > 0) {
+            bounces += n;
+            last_bounce = k;
+        }
+    }
+    s = tw_state(&t, ball);
+    /* bounces stop once the impact speed falls below rest_speed (0.5 m/s):
+     * sqrt(2 g h) 0.8^n < 0.5 with h = 2 gives n = 12 */
+    ck_assert_int_ge(bounces, 10);
+    ck_assert_int_le(bounces, 20);
+    ck_assert_int_lt(last_bounce, 900);
+    ck_assert_close(s.position.y, 0.25, 1e-3);
+    ck_assert(fabs(s.velocity.y) < 1e-4);
+    tw_free(&t);
+}
+END_TEST
+
+/* A box sliding on the ground decelerates at mu g (Coulomb friction). */
+START_TEST(test_sliding_box_decelerates_at_mu_g)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int box;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    add_ground(&t, 0.5f);
+    carom_body_def_set_box(&bd, 0.5f, 0.25f);
+    bd.position.y = 0.25f;
+    bd.velocity.x = 5.0f;
+    bd.friction = 0.5f; /* mixed: sqrt(0.5 * 0.5) = 0.5 */
+    box = tw_add(&t, &bd);
+    tw_steps(&t, 30); /* 0.5 s: v = 5 - 0.5 * 10 * 0.5 = 2.5 */
+    ck_assert_close(tw_state(&t, box).velocity.x, 2.5, 0.02);
+    tw_steps(&t, 60); /* stops at t = 1 s, after 2.5 m */
+    ck_assert_close(tw_state(&t, box).velocity.x, 0.0, 1e-4);
+    ck_assert_close(tw_state(&t, box).position.x, 2.5, 0.05);
+    tw_free(&t);
+}
+END_TEST
+
+Suite *suite_solver(void)
+{
+    Suite *s = suite_create("solver");
+    TCase *tn = tcase_create("note");
+    TCase *tc = tcase_create("conservation");
+    TCase *tr = tcase_create("resting");
+    tcase_add_test(tn, test_note_case1_equal_masses_opposite_velocities);
+    tcase_add_test(tn, test_note_case2_equal_masses_weighted_average);
+    tcase_add_test(tn, test_note_case3_opposite_momenta_any_masses_corrected);
+    tcase_add_test(tn, test_note_case4_elastic_corrected);
+    tcase_add_test(tn, test_note_case5_inelastic_move_together);
+    tcase_add_test(tn, test_corrected_momentum_form_for_unequal_masses);
+    tcase_add_test(tn, test_note_stepping_example1_contact_on_step_boundary);
+    tcase_add_test(tc, test_off_centre_polygon_impact_conserves_momenta);
+    tcase_add_test(tc, test_restitution_mixing_takes_the_larger);
+    tcase_add_test(tr, test_stack_of_five_boxes_holds_within_1mm_for_10s);
+    tcase_add_test(tr, test_ball_with_restitution_below_one_comes_to_rest);
+    tcase_add_test(tr, test_sliding_box_decelerates_at_mu_g);
+    suite_add_tcase(s, tn);
+    suite_add_tcase(s, tc);
+    suite_add_tcase(s, tr);
+    return s;
+}

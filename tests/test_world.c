@@ -1,0 +1,254 @@
+/*
+ * test_world.c -- the world API: defaults, caller memory, every world-level
+ * bad input and capacity status, events, determinism.
+ */
+#include <string.h>
+
+#include "test_util.h"
+
+START_TEST(test_default_world_def_matches_config_header)
+{
+    carom_world_def d = carom_default_world_def();
+    ck_assert(d.gravity.x == 0.0f && d.gravity.y == CAROM_DEFAULT_GRAVITY_Y);
+    ck_assert(d.dt == CAROM_DEFAULT_DT);
+    ck_assert_int_eq(d.method, CAROM_METHOD_DISCRETE);
+    ck_assert_int_eq(d.max_bodies, CAROM_DEFAULT_MAX_BODIES);
+    ck_assert(d.rest_speed == CAROM_DEFAULT_REST_SPEED);
+    ck_assert_int_eq(carom_world_def_validate(&d), CAROM_OK);
+}
+END_TEST
+
+START_TEST(test_bad_world_defs_get_their_status)
+{
+    carom_world_def d;
+#define EXPECT(stmt, status)                                                   \
+    d = carom_default_world_def();                                             \
+    stmt;                                                                      \
+    ck_assert_int_eq(carom_world_def_validate(&d), status);                    \
+    ck_assert_uint_eq(carom_world_buffer_size(&d), 0)
+    EXPECT(d.dt = 0.0f, CAROM_ERR_BAD_DT);
+    EXPECT(d.dt = -0.01f, CAROM_ERR_BAD_DT);
+    EXPECT(d.dt = NAN, CAROM_ERR_NOT_FINITE);
+    EXPECT(d.gravity.y = INFINITY, CAROM_ERR_NOT_FINITE);
+    EXPECT(d.max_bodies = 0, CAROM_ERR_BAD_CAPACITY);
+    EXPECT(d.max_events = -1, CAROM_ERR_BAD_CAPACITY);
+    EXPECT(d.max_pairs = -5, CAROM_ERR_BAD_CAPACITY);
+    EXPECT(d.rest_speed = -1.0f, CAROM_ERR_BAD_PARAMETER);
+    EXPECT(d.linear_slop = -1.0f, CAROM_ERR_BAD_PARAMETER);
+    EXPECT(d.velocity_iterations = -1, CAROM_ERR_BAD_PARAMETER);
+    EXPECT(d.method = (carom_method)17, CAROM_ERR_BAD_METHOD);
+#undef EXPECT
+    ck_assert_int_eq(carom_world_def_validate(NULL), CAROM_ERR_NULL);
+}
+END_TEST
+
+START_TEST(test_init_rejects_small_buffer_and_accepts_any_alignment)
+{
+    carom_world_def d = carom_default_world_def();
+    size_t n;
+    unsigned char *mem;
+    carom_world *w = NULL;
+    carom_body_def bd = carom_default_body_def();
+    d.max_bodies = 3;
+    n = carom_world_buffer_size(&d);
+    mem = (unsigned char *)malloc(n + 1);
+    ck_assert_int_eq(carom_world_init(&w, &d, mem + 1, n - 1), CAROM_ERR_BUFFER_TOO_SMALL);
+    ck_assert_int_eq(carom_world_init(&w, &d, mem + 1, n), CAROM_OK);
+    ck_assert_int_eq(carom_world_add_body(w, &bd, NULL), CAROM_OK);
+    ck_assert_int_eq(carom_world_step(w), CAROM_OK);
+    ck_assert_int_eq(carom_world_init(NULL, &d, mem, n), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_world_init(&w, &d, NULL, n), CAROM_ERR_NULL);
+    free(mem);
+}
+END_TEST
+
+START_TEST(test_full_world_refuses_bodies_and_stays_intact)
+{
+    carom_world_def d = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int id = -7;
+    d.max_bodies = 2;
+    t = tw_make(&d);
+    tw_add(&t, &bd);
+    bd.position.x = 5.0f;
+    tw_add(&t, &bd);
+    ck_assert_int_eq(carom_world_add_body(t.w, &bd, &id), CAROM_ERR_WORLD_FULL);
+    ck_assert_int_eq(id, -7);
+    ck_assert_int_eq(carom_world_body_count(t.w), 2);
+    tw_steps(&t, 3);
+    tw_free(&t);
+}
+END_TEST
+
+START_TEST(test_bad_body_id_and_null_arguments)
+{
+    carom_world_def d = carom_default_world_def();
+    carom_body_state s;
+    carom_vec2 f = {1.0f, 0.0f};
+    tw t;
+    d.max_bodies = 1;
+    t = tw_make(&d);
+    ck_assert_int_eq(carom_body_get_state(t.w, 0, &s), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_get_state(t.w, -1, &s), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_get_state(t.w, 0, NULL), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_force(t.w, 3, f, 0.0f), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_world_add_body(t.w, NULL, NULL), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_world_step(NULL), CAROM_ERR_NULL);
+    tw_free(&t);
+}
+END_TEST
+
+START_TEST(test_status_strings_are_distinct_and_named)
+{
+    int i, j;
+    for (i = 0; i < CAROM_STATUS_COUNT; ++i) {
+        const char *a = carom_status_string((carom_status)i);
+        ck_assert_ptr_nonnull(a);
+        ck_assert(strlen(a) > 1);
+        for (j = 0; j < i; ++j)
+            ck_assert_str_ne(a, carom_status_string((carom_status)j));
+    }
+    ck_assert_str_eq(carom_status_string((carom_status)999), "unknown status");
+}
+END_TEST
+
+START_TEST(test_method_names_round_trip)
+{
+    carom_method m;
+    ck_assert_int_eq(carom_method_from_name("discrete", &m), CAROM_OK);
+    ck_assert_int_eq(m, CAROM_METHOD_DISCRETE);
+    ck_assert_str_eq(carom_method_name(CAROM_METHOD_DISCRETE), "discrete");
+    ck_assert_int_eq(carom_method_from_name("bogus", &m), CAROM_ERR_BAD_METHOD);
+    ck_assert_int_eq(carom_method_from_name(NULL, &m), CAROM_ERR_NULL);
+}
+END_TEST
+
+/* Two balls hit the ground in the same step; room for one event. */
+START_TEST(test_event_capacity_overflow_is_reported)
+{
+    carom_world_def d = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int k, n = 0;
+    carom_status st = CAROM_OK;
+    d.max_bodies = 3;
+    d.max_events = 1;
+    t = tw_make(&d);
+    bd.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&bd, 10.0f, 0.5f);
+    bd.position.y = -0.5f;
+    tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    bd.position.y = 1.5f;
+    bd.position.x = -2.0f;
+    tw_add(&t, &bd);
+    bd.position.x = 2.0f;
+    tw_add(&t, &bd);
+    for (k = 0; k < 60 && st == CAROM_OK; ++k)
+        st = carom_world_step(t.w);
+    ck_assert_int_eq(st, CAROM_ERR_EVENT_CAPACITY);
+    carom_world_events(t.w, &n);
+    ck_assert_int_eq(n, 1);
+    ck_assert_int_eq(carom_world_events_dropped(t.w), 1);
+    tw_free(&t);
+}
+END_TEST
+
+START_TEST(test_pair_capacity_overflow_is_reported)
+{
+    carom_world_def d = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int i;
+    d.max_bodies = 4;
+    d.max_pairs = 1;
+    d.gravity.y = 0.0f;
+    t = tw_make(&d);
+    for (i = 0; i < 3; ++i) {
+        bd.position.x = 0.9f * (float)i;
+        tw_add(&t, &bd);
+    }
+    ck_assert_int_eq(carom_world_step(t.w), CAROM_ERR_PAIR_CAPACITY);
+    tw_free(&t);
+}
+END_TEST
+
+static void nan_force(void *user, int body, const carom_body_state *st,
+                      carom_vec2 *f, float *torque)
+{
+    (void)user; (void)body; (void)st; (void)torque;
+    f->x = NAN;
+}
+
+START_TEST(test_non_finite_callback_force_is_refused_and_reported)
+{
+    carom_world_def d = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_body_state s;
+    tw t;
+    d.max_bodies = 1;
+    d.force_fn = nan_force;
+    t = tw_make(&d);
+    tw_add(&t, &bd);
+    ck_assert_int_eq(carom_world_step(t.w), CAROM_ERR_NOT_FINITE);
+    s = tw_state(&t, 0);
+    ck_assert(isfinite(s.position.x) && isfinite(s.velocity.x));
+    tw_free(&t);
+}
+END_TEST
+
+/* The same scene run twice gives the same bits. */
+START_TEST(test_simulation_is_deterministic)
+{
+    carom_world_def d = carom_default_world_def();
+    tw t[2];
+    int r, i;
+    d.max_bodies = 40;
+    for (r = 0; r < 2; ++r) {
+        carom_body_def bd = carom_default_body_def();
+        t[r] = tw_make(&d);
+        bd.type = CAROM_BODY_STATIC;
+        carom_body_def_set_box(&bd, 10.0f, 0.5f);
+        bd.position.y = -0.5f;
+        tw_add(&t[r], &bd);
+        for (i = 0; i < 39; ++i) {
+            bd = carom_default_body_def();
+            if (i % 2)
+                carom_body_def_set_box(&bd, 0.3f, 0.2f);
+            else
+                bd.radius = 0.25f;
+            bd.position.x = -4.0f + 0.23f * (float)i;
+            bd.position.y = 1.0f + 0.7f * (float)(i % 7);
+            bd.restitution = 0.3f;
+            tw_add(&t[r], &bd);
+        }
+        tw_steps(&t[r], 300);
+    }
+    for (i = 0; i < 40; ++i) {
+        carom_body_state a = tw_state(&t[0], i), b = tw_state(&t[1], i);
+        ck_assert(memcmp(&a, &b, sizeof a) == 0);
+    }
+    tw_free(&t[0]);
+    tw_free(&t[1]);
+}
+END_TEST
+
+Suite *suite_world(void)
+{
+    Suite *s = suite_create("world");
+    TCase *tc = tcase_create("api");
+    tcase_add_test(tc, test_default_world_def_matches_config_header);
+    tcase_add_test(tc, test_bad_world_defs_get_their_status);
+    tcase_add_test(tc, test_init_rejects_small_buffer_and_accepts_any_alignment);
+    tcase_add_test(tc, test_full_world_refuses_bodies_and_stays_intact);
+    tcase_add_test(tc, test_bad_body_id_and_null_arguments);
+    tcase_add_test(tc, test_status_strings_are_distinct_and_named);
+    tcase_add_test(tc, test_method_names_round_trip);
+    tcase_add_test(tc, test_event_capacity_overflow_is_reported);
+    tcase_add_test(tc, test_pair_capacity_overflow_is_reported);
+    tcase_add_test(tc, test_non_finite_callback_force_is_refused_and_reported);
+    tcase_add_test(tc, test_simulation_is_deterministic);
+    suite_add_tcase(s, tc);
+    return s;
+}
