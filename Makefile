@@ -26,7 +26,7 @@ CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
 
 SCENE ?= tools/scenes/default.scene
 
-.PHONY: all lib cli check unit cli-test check-symbols run clean help deps
+.PHONY: all lib cli check unit cli-test readme-test check-symbols run clean help deps
 
 all: $(LIB) $(CLI)
 
@@ -65,6 +65,12 @@ unit: deps
 cli-test: $(CLI)
 	sh tests/cli_test.sh $(CLI)
 
+# The README's example program must compile and run against the library.
+readme-test: $(LIB) | $(BUILD)/tests
+	awk '/^```c$$/{f=1;next} /^```$$/{f=0} f' README.md > $(BUILD)/tests/readme_example.c
+	$(CC) $(CPPFLAGS) $(CFLAGS) $(BUILD)/tests/readme_example.c $(LIB) -lm -o $(BUILD)/tests/readme_example
+	$(BUILD)/tests/readme_example
+
 # The library must not allocate, and must call no libm function but sqrtf:
 # inspect the undefined symbols of the built archive.
 check-symbols: $(LIB)
@@ -75,6 +81,7 @@ check: deps
 	@$(MAKE) --no-print-directory check-symbols
 	@$(MAKE) --no-print-directory unit
 	@$(MAKE) --no-print-directory cli-test
+	@$(MAKE) --no-print-directory readme-test
 
 # ---- the main job -----------------------------------------------------------
 

@@ -750,11 +750,12 @@ START_TEST(test_scene_rejects_out_of_range_world_values)
     expect_world_error("steps=1000000001", "steps: must be in [0, ");
     expect_world_error("rest-speed=-1", "rest-speed: must be >= 0");
     expect_world_error("slop=-0.1", "slop: must be >= 0");
-    expect_world_error("velocity-iterations=-1", "velocity-iterations: out of range");
-    expect_world_error("position-iterations=-1", "position-iterations: out of range");
-    expect_world_error("max-events=0", "max-events: out of range");
-    expect_world_error("max-pairs=-1", "max-pairs: out of range");
-    expect_world_error("max-events=16777217", "max-events: out of range");
+    expect_world_error("velocity-iterations=-1", "velocity-iterations: must be in [0, 1000], got -1");
+    expect_world_error("velocity-iterations=1001", "velocity-iterations: must be in [0, 1000]");
+    expect_world_error("position-iterations=-1", "position-iterations: must be in [0, 1000]");
+    expect_world_error("max-events=0", "max-events: must be in [1, 16777216]");
+    expect_world_error("max-pairs=-1", "max-pairs: must be in [0, 16777216]");
+    expect_world_error("max-events=16777217", "max-events: must be in [1, 16777216]");
 }
 END_TEST
 

@@ -14,6 +14,8 @@
 #define SCENE_MAX_LINE 4096
 #define SCENE_DEFAULT_STEPS 600L
 #define SCENE_MAX_STEPS 1000000000L
+#define SCENE_MAX_ITERATIONS 1000L /* the library's limit */
+#define SCENE_MAX_BYTES (64L << 20)
 
 typedef struct parser {
     const char *name;
@@ -41,11 +43,14 @@ static int parse_float(parser *p, const char *key, const char *s, float *out)
     double d;
     if (*s == '\0')
         return fail(p, "%s: missing number", key);
+    if (isspace((unsigned char)*s))
+        return fail(p, "%s: malformed number '%s'", key, s);
     errno = 0;
     d = strtod(s, &end);
     if (end == s || *end != '\0')
         return fail(p, "%s: malformed number '%s'", key, s);
-    if (!isfinite(d) || errno == ERANGE || fabs(d) > 3.0e38)
+    /* underflow to (near) zero is fine; overflow and nan/inf are not */
+    if (!isfinite(d) || (errno == ERANGE && fabs(d) >= 1.0) || fabs(d) > 3.0e38)
         return fail(p, "%s: '%s' is not a finite float", key, s);
     *out = (float)d;
     return 0;
@@ -57,6 +62,8 @@ static int parse_long(parser *p, const char *key, const char *s, long *out)
     long v;
     if (*s == '\0')
         return fail(p, "%s: missing integer", key);
+    if (isspace((unsigned char)*s))
+        return fail(p, "%s: malformed integer '%s'", key, s);
     errno = 0;
     v = strtol(s, &end, 10);
     if (end == s || *end != '\0' || errno == ERANGE)
@@ -176,8 +183,10 @@ static int parse_world(parser *p, char *rest, scene *s)
                            : strcmp(key, "max-events") == 0 ? 256u : 512u;
             if (seen_before(p, &seen, bit, key) || parse_long(p, key, val, &v))
                 return -1;
-            if (v < (bit == 512u ? 0 : bit >= 256u ? 1 : 0) || v > (1L << 24))
-                return fail(p, "%s: out of range, got %s", key, val);
+            long lo = bit >= 256u && bit != 512u ? 1 : 0;
+            long hi = bit <= 128u ? SCENE_MAX_ITERATIONS : (1L << 24);
+            if (v < lo || v > hi)
+                return fail(p, "%s: must be in [%ld, %ld], got %s", key, lo, hi, val);
             if (bit == 64u) s->world.velocity_iterations = (int)v;
             else if (bit == 128u) s->world.position_iterations = (int)v;
             else if (bit == 256u) s->world.max_events = (int)v;
@@ -432,7 +441,13 @@ int scene_load(const char *path, scene *s, char *err, size_t errlen)
     }
     if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 ||
         fseek(f, 0, SEEK_SET) != 0) {
-        snprintf(err, errlen, "%s: cannot read", path);
+        snprintf(err, errlen, "%s: cannot read (not a regular file?)", path);
+        fclose(f);
+        return -1;
+    }
+    if (size > SCENE_MAX_BYTES) {
+        snprintf(err, errlen, "%s: not a regular file, or larger than %ld bytes",
+                 path, SCENE_MAX_BYTES);
         fclose(f);
         return -1;
     }
@@ -443,6 +458,12 @@ int scene_load(const char *path, scene *s, char *err, size_t errlen)
         return -1;
     }
     got = fread(text, 1, (size_t)size, f);
+    if (ferror(f)) {
+        snprintf(err, errlen, "%s: read error (a directory?)", path);
+        fclose(f);
+        free(text);
+        return -1;
+    }
     fclose(f);
     text[got] = '\0';
     if (strlen(text) != got) {
