@@ -26,7 +26,7 @@ CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
 
 SCENE ?= tools/scenes/default.scene
 
-.PHONY: all lib cli check unit cli-test readme-test check-symbols run clean help deps
+.PHONY: all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
 
 all: $(LIB) $(CLI)
 
@@ -76,12 +76,16 @@ readme-test: $(LIB) | $(BUILD)/tests
 check-symbols: $(LIB)
 	sh tools/check-symbols.sh $(LIB)
 
+# Every switch of carom_config.h builds, and removes (or adds) code.
+check-switches:
+	sh tools/check-switches.sh
+
 check: deps
 	@$(MAKE) --no-print-directory all
 	@$(MAKE) --no-print-directory check-symbols
 	@$(MAKE) --no-print-directory unit
-	@$(MAKE) --no-print-directory cli-test
 	@$(MAKE) --no-print-directory readme-test
+	@$(MAKE) --no-print-directory cli-test
 
 # ---- the main job -----------------------------------------------------------
 

@@ -14,6 +14,8 @@ static int cr_vec_finite(cr_v2 v) { return cr_finite(v.x) && cr_finite(v.y); }
 
 /* ---- polygon checks -------------------------------------------------------- */
 
+#if CAROM_ENABLE_POLYGONS
+
 /* Do segments p1p2 and q1q2 cross at a point interior to both? */
 static int cr_segments_cross(cr_v2 p1, cr_v2 p2, cr_v2 q1, cr_v2 q2)
 {
@@ -115,6 +117,8 @@ static void cr_polygon_mass(const cr_v2 *v, int n, float *area, cr_v2 *center,
     *inertia = cr_sub(j0, cr_mul(a, cr_vdot(c, c)));
     *center = cr_vadd(o, c);
 }
+
+#endif /* CAROM_ENABLE_POLYGONS */
 
 /* ---- public definition helpers ------------------------------------------- */
 
