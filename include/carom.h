@@ -78,7 +78,12 @@ typedef enum carom_method {
                                     of the step (overlap-based, like most
                                     game engines) */
     CAROM_METHOD_EVENTS = 1,   /**< every impact at its exact instant inside
-                                    the step, in time order */
+                                    the step, in time order (default) */
+    CAROM_METHOD_FIRST_IMPACT = 2, /**< the design note's method: each pair's
+                                    first impact in the step, found once at
+                                    the start of the step, sub-stepped to
+                                    its instant; later impacts of the step
+                                    are left to the end-of-step solver */
     CAROM_METHOD_COUNT
 } carom_method;
 
@@ -114,7 +119,8 @@ typedef struct carom_event {
 typedef struct carom_world_def {
     carom_vec2 gravity;       /**< m/s^2, default (0, -10) */
     float dt;                 /**< fixed step, s, > 0; default 1/60 */
-    carom_method method;      /**< default CAROM_METHOD_DISCRETE */
+    carom_method method;      /**< default CAROM_METHOD_EVENTS (DISCRETE if
+                                   CAROM_ENABLE_EVENTS is 0) */
     int max_bodies;           /**< body capacity, default 256 */
     int max_pairs;            /**< broadphase pairs / contacts per step;
                                    0 = CAROM_DEFAULT_PAIRS_PER_BODY *
@@ -261,7 +267,8 @@ carom_status carom_world_step(carom_world *w);
 carom_status carom_world_set_method(carom_world *w, carom_method method);
 carom_method carom_world_get_method(const carom_world *w);
 
-/** "discrete" / "events" -> method; CAROM_ERR_BAD_METHOD if unknown. */
+/** "discrete" / "events" / "first-impact" -> method; CAROM_ERR_BAD_METHOD
+ * if unknown (a known method compiled out is CAROM_ERR_DISABLED when used). */
 carom_status carom_method_from_name(const char *name, carom_method *out);
 const char *carom_method_name(carom_method method);
 
@@ -278,6 +285,17 @@ const carom_event *carom_world_events(const carom_world *w, int *count);
 
 /** Number of impacts of the last step that did not fit in max_events. */
 int carom_world_events_dropped(const carom_world *w);
+
+/** Counters accumulated since the world was made. */
+typedef struct carom_stats {
+    long steps;
+    long impacts;        /**< events recorded */
+    long toi_queries;    /**< pair time-of-impact searches (events methods) */
+    long toi_early_outs; /**< of which ruled out by the closest-approach
+                              test before any root finding */
+} carom_stats;
+
+carom_status carom_world_get_stats(const carom_world *w, carom_stats *out);
 
 #ifdef __cplusplus
 }

@@ -100,6 +100,18 @@
 
 /* ---- numerical constants (not meant to be tuned per scene) -------------- */
 
+#ifndef CAROM_TOI_MAX_ITERATIONS
+#define CAROM_TOI_MAX_ITERATIONS 64 /**< conservative advancement steps per
+                                         time-of-impact query (rotating
+                                         polygons); always terminates */
+#endif
+
+#ifndef CAROM_TOI_TOLERANCE
+#define CAROM_TOI_TOLERANCE 0.1f /**< conservative advancement stops when the
+                                      separation is below this fraction of
+                                      linear_slop (0.05 mm by default) */
+#endif
+
 #ifndef CAROM_POSITION_BETA
 #define CAROM_POSITION_BETA 0.8f /**< fraction of a penetration removed per
                                       projection sweep (1 overshoots in

@@ -73,16 +73,13 @@ static void cr_sort_pairs(cr_pair *a, cr_pair *tmp, int n)
             a[i] = src[i];
 }
 
-/* Fill w->pairs; returns the number found (stored ones plus dropped ones). */
-int cr_broadphase(carom_world *w, float margin)
+/* Pairs of the boxes already in w->proxies (one per body, any order);
+ * returns the number found (stored ones plus dropped ones). */
+int cr_broadphase_pairs(carom_world *w)
 {
     int i, j, n = w->body_count, found = 0;
     int cap = w->def.max_pairs;
 
-    for (i = 0; i < n; ++i) {
-        cr_body_bounds(&w->bodies[i], margin, &w->proxies[i]);
-        w->proxies[i].body = i;
-    }
     cr_sort_proxies(w->proxies, w->proxy_tmp, n);
 
     w->pair_count = 0;
@@ -108,4 +105,15 @@ int cr_broadphase(carom_world *w, float margin)
     w->pairs_dropped = found - w->pair_count;
     cr_sort_pairs(w->pairs, w->pair_tmp, w->pair_count);
     return found;
+}
+
+/* Pairs of the bodies' current boxes grown by margin. */
+int cr_broadphase(carom_world *w, float margin)
+{
+    int i;
+    for (i = 0; i < w->body_count; ++i) {
+        cr_body_bounds(&w->bodies[i], margin, &w->proxies[i]);
+        w->proxies[i].body = i;
+    }
+    return cr_broadphase_pairs(w);
 }

@@ -79,10 +79,10 @@ static int cr_forces(const carom_world *w, int id, const cr_body *b,
     return ok;
 }
 
-void cr_body_forces(const carom_world *w, int id, const cr_body *b,
-                    cr_v2 *acc, float *alpha)
+int cr_body_forces(const carom_world *w, int id, const cr_body *b,
+                   cr_v2 *acc, float *alpha)
 {
-    (void)cr_forces(w, id, b, acc, alpha);
+    return cr_forces(w, id, b, acc, alpha);
 }
 
 /* Advance every dynamic body by dt. Returns 0 if some force callback value

@@ -17,6 +17,10 @@
 
 /* ---- bodies ------------------------------------------------------------- */
 
+typedef struct cr_proxy_box {
+    float lo_x, hi_x, lo_y, hi_y;
+} cr_proxy_box;
+
 typedef struct cr_body {
     int type;  /* carom_body_type */
     int shape; /* carom_shape_type */
@@ -35,6 +39,13 @@ typedef struct cr_body {
     float alpha;/* angular acceleration from torques at the current state */
     cr_v2 acc_c;   /* acceleration from last step's resting contact forces */
     float alpha_c; /* and its angular part (see solver.c) */
+
+    /* events method: the state above is at local step time t_sync; the
+     * drift acceleration (a0 + a_c) is constant through the step */
+    float t_sync;
+    cr_v2 acc_d;
+    float alpha_d;
+    cr_proxy_box sweep; /* box swept over the rest of the step */
 
     float m, inv_m, I, inv_I;
     float restitution, friction;
@@ -102,10 +113,13 @@ struct carom_world {
     int pair_count;
     int pairs_dropped;
 
+    float *pair_toi;               /* events method: next impact per pair */
     cr_manifold *manifolds, *prev_manifolds; /* max_pairs each */
     int manifold_count, prev_manifold_count;
 
     int needs_prime; /* bodies added since the contact forces were solved */
+    long toi_queries, toi_early_outs; /* events method statistics */
+    long impacts_total;
 
     carom_event *events; /* max_events */
     int event_count;
@@ -121,21 +135,39 @@ carom_vec2 cr_body_origin(const cr_body *b);
 
 /* integrate.c */
 int cr_integrate(carom_world *w, float dt);
-void cr_body_forces(const carom_world *w, int id, const cr_body *b,
-                    cr_v2 *acc, float *alpha);
+int cr_body_forces(const carom_world *w, int id, const cr_body *b,
+                   cr_v2 *acc, float *alpha);
 cr_rot cr_rot_advance(cr_rot q, float angle);
 
 /* broadphase.c */
 int cr_broadphase(carom_world *w, float margin);
+int cr_broadphase_pairs(carom_world *w);
 
 /* narrowphase.c */
 int cr_collide(const cr_body *a, const cr_body *b, float margin,
                cr_manifold *m);
+float cr_separation(const cr_body *a, const cr_body *b);
+
+/* toi.c */
+void cr_body_pose(const cr_body *b, float t, cr_v2 *x, cr_rot *q);
+void cr_body_sync(cr_body *b, float t);
+void cr_body_swept_bounds(const cr_body *b, float t0, float t1, float margin,
+                          cr_proxy *out);
+int cr_first_down_root2(float c0, float c1, float c2, float hi, float *out);
+int cr_first_root4(const float c[5], float hi, float *out);
+float cr_approach_speed_at(const cr_body *a, const cr_body *b, float t,
+                           float margin);
+int cr_time_of_impact(const cr_body *a, const cr_body *b, float t0, float t1,
+                      float tol, float *toi);
+
+/* events.c */
+carom_status cr_step_events(carom_world *w);
 
 /* solver.c */
 void cr_solver_prepare(carom_world *w, int resting_only);
 void cr_solver_velocities(carom_world *w, int iterations);
 void cr_solver_positions(carom_world *w);
 void cr_solver_store(carom_world *w);
+float cr_solver_impact(carom_world *w, cr_manifold *m, float *approach);
 
 #endif /* CAROM_INTERNAL_H */

@@ -19,6 +19,9 @@
  * nearly equal faces from step to step would spoil warm starting. */
 #define CR_FACE_TOL_FRACTION 0.1f
 
+/* A margin larger than any distance: collide at any range. */
+#define CR_FAR 3.0e38f
+
 static cr_v2 cr_midpoint(cr_v2 p, cr_v2 q)
 {
     return cr_vscale(0.5f, cr_vadd(p, q));
@@ -246,5 +249,36 @@ int cr_collide(const cr_body *A, const cr_body *B, float margin, cr_manifold *m)
     return cr_polygon_polygon(A, B, margin, m);
 #else
     return 0;
+#endif
+}
+
+/*
+ * A lower bound of the distance between two shapes (negative: overlap), for
+ * conservative advancement: exact for pairs with a circle; for polygons the
+ * separating-axis separation, which is the distance whenever the closest
+ * features are a vertex and an edge and never more than it.
+ */
+float cr_separation(const cr_body *A, const cr_body *B)
+{
+    cr_manifold m;
+    if (A->shape == CAROM_SHAPE_CIRCLE && B->shape == CAROM_SHAPE_CIRCLE)
+        return cr_sub(cr_vlen(cr_vsub(B->x, A->x)), cr_add(A->radius, B->radius));
+#if CAROM_ENABLE_POLYGONS
+    if (A->shape == CAROM_SHAPE_POLYGON && B->shape == CAROM_SHAPE_CIRCLE) {
+        cr_polygon_circle(A, B, CR_FAR, &m);
+        return m.pts[0].sep;
+    }
+    if (A->shape == CAROM_SHAPE_CIRCLE) {
+        cr_polygon_circle(B, A, CR_FAR, &m);
+        return m.pts[0].sep;
+    }
+    {
+        int fa, fb;
+        (void)m;
+        return cr_max(cr_max_separation(A, B, &fa), cr_max_separation(B, A, &fb));
+    }
+#else
+    (void)m;
+    return 0.0f;
 #endif
 }

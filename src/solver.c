@@ -43,6 +43,11 @@
  * which a contact counts as having been at rest (solver residue). */
 #define CR_REST_TOL_FRACTION 0.01f
 
+/* Gauss-Seidel visits of a single impact (events method): the normal part
+ * is exact after one, friction and the normal/tangent coupling converge in
+ * a few. */
+#define CR_IMPACT_ITERATIONS 4
+
 static cr_v2 cr_tangent(cr_v2 n) { return cr_v(n.y, cr_neg(n.x)); }
 
 static float cr_effective_mass(const cr_body *A, const cr_body *B, cr_v2 ra,
@@ -154,11 +159,73 @@ static void cr_match_previous(carom_world *w)
 
 /* resting_only: every point aims for vn >= 0 (no restitution); used to
  * find the resting contact forces of a state (world.c, priming). */
+/* Mixing, anchors, effective masses, pre-solve velocities and targets of
+ * one manifold. */
+static void cr_prepare_manifold(carom_world *w, cr_manifold *m,
+                                int resting_only)
+{
+    int k;
+    float rest = w->def.rest_speed;
+    cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
+    cr_v2 t = cr_tangent(m->n);
+    m->restitution = cr_max(A->restitution, B->restitution);
+#if CAROM_ENABLE_FRICTION
+    m->friction = cr_sqrt(cr_mul(A->friction, B->friction));
+#else
+    m->friction = 0.0f;
+#endif
+    for (k = 0; k < m->count; ++k) {
+        cr_point *p = &m->pts[k];
+        p->ra = cr_vsub(p->p, A->x);
+        p->rb = cr_vsub(p->p, B->x);
+        p->mass_n = cr_effective_mass(A, B, p->ra, p->rb, m->n);
+        p->mass_t = cr_effective_mass(A, B, p->ra, p->rb, t);
+        p->vn0 = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
+        p->approach = cr_contact_speed(A, B, p, m->n);
+        p->target = !resting_only && cr_gt(p->approach, rest)
+                        ? cr_mul(m->restitution, p->approach)
+                        : 0.0f;
+        p->rest_frac = cr_gt(p->target, 0.0f)
+                           ? 0.0f
+                           : cr_resting_fraction(A, B, p, m->n, rest);
+    }
+    m->block = 0;
+    if (m->count == 2) {
+        float r1a = cr_vcross(m->pts[0].ra, m->n);
+        float r1b = cr_vcross(m->pts[0].rb, m->n);
+        float r2a = cr_vcross(m->pts[1].ra, m->n);
+        float r2b = cr_vcross(m->pts[1].rb, m->n);
+        float lin = cr_add(A->inv_m, B->inv_m);
+        float det;
+        m->k11 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r1a, r1a)),
+                                    cr_mul(B->inv_I, cr_mul(r1b, r1b))));
+        m->k22 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r2a, r2a)),
+                                    cr_mul(B->inv_I, cr_mul(r2b, r2b))));
+        m->k12 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r1a, r2a)),
+                                    cr_mul(B->inv_I, cr_mul(r1b, r2b))));
+        /* points too close together make K near singular: then solve
+         * them one after the other */
+        det = cr_sub(cr_mul(m->k11, m->k22), cr_mul(m->k12, m->k12));
+        m->block = cr_gt(det, cr_mul(CR_BLOCK_MIN_DET, cr_mul(m->k11, m->k22)));
+    }
+}
+
+static void cr_warm_start(carom_world *w, const cr_manifold *m)
+{
+    int k;
+    cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
+    cr_v2 t = cr_tangent(m->n);
+    for (k = 0; k < m->count; ++k) {
+        const cr_point *p = &m->pts[k];
+        if (!cr_eq(p->pn, 0.0f) || !cr_eq(p->pt, 0.0f))
+            cr_apply(A, B, p->ra, p->rb,
+                     cr_vadd(cr_vscale(p->pn, m->n), cr_vscale(p->pt, t)));
+    }
+}
+
 void cr_solver_prepare(carom_world *w, int resting_only)
 {
     int i, k;
-    float rest = w->def.rest_speed;
-
     for (i = 0; i < w->manifold_count; ++i) {
         cr_manifold *m = &w->manifolds[i];
         for (k = 0; k < m->count; ++k) {
@@ -167,66 +234,11 @@ void cr_solver_prepare(carom_world *w, int resting_only)
         }
     }
     cr_match_previous(w);
-
-    for (i = 0; i < w->manifold_count; ++i) {
-        cr_manifold *m = &w->manifolds[i];
-        cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
-        cr_v2 t = cr_tangent(m->n);
-        m->restitution = cr_max(A->restitution, B->restitution);
-#if CAROM_ENABLE_FRICTION
-        m->friction = cr_sqrt(cr_mul(A->friction, B->friction));
-#else
-        m->friction = 0.0f;
-#endif
-        for (k = 0; k < m->count; ++k) {
-            cr_point *p = &m->pts[k];
-            p->ra = cr_vsub(p->p, A->x);
-            p->rb = cr_vsub(p->p, B->x);
-            p->mass_n = cr_effective_mass(A, B, p->ra, p->rb, m->n);
-            p->mass_t = cr_effective_mass(A, B, p->ra, p->rb, t);
-            p->vn0 = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
-            p->approach = cr_contact_speed(A, B, p, m->n);
-            p->target = !resting_only && cr_gt(p->approach, rest)
-                            ? cr_mul(m->restitution, p->approach)
-                            : 0.0f;
-            p->rest_frac = cr_gt(p->target, 0.0f)
-                               ? 0.0f
-                               : cr_resting_fraction(A, B, p, m->n, rest);
-        }
-        m->block = 0;
-        if (m->count == 2) {
-            float r1a = cr_vcross(m->pts[0].ra, m->n);
-            float r1b = cr_vcross(m->pts[0].rb, m->n);
-            float r2a = cr_vcross(m->pts[1].ra, m->n);
-            float r2b = cr_vcross(m->pts[1].rb, m->n);
-            float lin = cr_add(A->inv_m, B->inv_m);
-            float det;
-            m->k11 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r1a, r1a)),
-                                        cr_mul(B->inv_I, cr_mul(r1b, r1b))));
-            m->k22 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r2a, r2a)),
-                                        cr_mul(B->inv_I, cr_mul(r2b, r2b))));
-            m->k12 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r1a, r2a)),
-                                        cr_mul(B->inv_I, cr_mul(r1b, r2b))));
-            /* points too close together make K near singular: then solve
-             * them one after the other */
-            det = cr_sub(cr_mul(m->k11, m->k22), cr_mul(m->k12, m->k12));
-            m->block = cr_gt(det, cr_mul(CR_BLOCK_MIN_DET,
-                                         cr_mul(m->k11, m->k22)));
-        }
-    }
-
+    for (i = 0; i < w->manifold_count; ++i)
+        cr_prepare_manifold(w, &w->manifolds[i], resting_only);
     /* warm start only now: every vn0 above is a pre-solve velocity */
-    for (i = 0; i < w->manifold_count; ++i) {
-        cr_manifold *m = &w->manifolds[i];
-        cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
-        cr_v2 t = cr_tangent(m->n);
-        for (k = 0; k < m->count; ++k) {
-            cr_point *p = &m->pts[k];
-            if (!cr_eq(p->pn, 0.0f) || !cr_eq(p->pt, 0.0f))
-                cr_apply(A, B, p->ra, p->rb,
-                         cr_vadd(cr_vscale(p->pn, m->n), cr_vscale(p->pt, t)));
-        }
-    }
+    for (i = 0; i < w->manifold_count; ++i)
+        cr_warm_start(w, &w->manifolds[i]);
 }
 
 /*
@@ -289,45 +301,75 @@ static int cr_block_normal(cr_manifold *m, cr_body *A, cr_body *B)
     return 1;
 }
 
+/* One Gauss-Seidel visit of a manifold: friction, then normal impulses. */
+static void cr_solve_manifold(carom_world *w, cr_manifold *m)
+{
+    int k;
+    cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
+#if CAROM_ENABLE_FRICTION
+    if (cr_gt(m->friction, 0.0f)) {
+        cr_v2 t = cr_tangent(m->n);
+        for (k = 0; k < m->count; ++k) {
+            cr_point *p = &m->pts[k];
+            float vt = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), t);
+            float limit = cr_mul(m->friction, p->pn);
+            float pt = cr_clamp(cr_sub(p->pt, cr_mul(p->mass_t, vt)),
+                                cr_neg(limit), limit);
+            float d = cr_sub(pt, p->pt);
+            p->pt = pt;
+            cr_apply(A, B, p->ra, p->rb, cr_vscale(d, t));
+        }
+    }
+#endif
+    if (m->block && cr_block_normal(m, A, B))
+        return;
+    for (k = 0; k < m->count; ++k) {
+        cr_point *p = &m->pts[k];
+        float vn = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
+        float pn = cr_max(cr_sub(p->pn, cr_mul(p->mass_n, cr_sub(vn, p->target))),
+                          0.0f);
+        float d = cr_sub(pn, p->pn);
+        p->pn = pn;
+        cr_apply(A, B, p->ra, p->rb, cr_vscale(d, m->n));
+    }
+}
+
 void cr_solver_velocities(carom_world *w, int iterations)
 {
-    int it, j, k;
+    int it, j;
     for (it = 0; it < iterations; ++it) {
         for (j = 0; j < w->manifold_count; ++j) {
             /* symmetric Gauss-Seidel: odd sweeps run backwards, so a push
              * travels up a stack as fast as down it */
             int i = (it & 1) ? w->manifold_count - 1 - j : j;
-            cr_manifold *m = &w->manifolds[i];
-            cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
-#if CAROM_ENABLE_FRICTION
-            if (cr_gt(m->friction, 0.0f)) {
-                cr_v2 t = cr_tangent(m->n);
-                for (k = 0; k < m->count; ++k) {
-                    cr_point *p = &m->pts[k];
-                    float vt = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), t);
-                    float limit = cr_mul(m->friction, p->pn);
-                    float pt = cr_clamp(cr_sub(p->pt, cr_mul(p->mass_t, vt)),
-                                        cr_neg(limit), limit);
-                    float d = cr_sub(pt, p->pt);
-                    p->pt = pt;
-                    cr_apply(A, B, p->ra, p->rb, cr_vscale(d, t));
-                }
-            }
-#endif
-            if (m->block && cr_block_normal(m, A, B))
-                continue;
-            for (k = 0; k < m->count; ++k) {
-                cr_point *p = &m->pts[k];
-                float vn = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
-                float pn = cr_max(cr_sub(p->pn, cr_mul(p->mass_n,
-                                                       cr_sub(vn, p->target))),
-                                  0.0f);
-                float d = cr_sub(pn, p->pn);
-                p->pn = pn;
-                cr_apply(A, B, p->ra, p->rb, cr_vscale(d, m->n));
-            }
+            cr_solve_manifold(w, &w->manifolds[i]);
         }
     }
+}
+
+/*
+ * One impact of the events method: the manifold of a pair at the instant
+ * its surfaces meet, solved alone from zero impulses (the block solve makes
+ * a 2-point impact exact in one visit; further visits settle friction).
+ * Returns the total normal impulse; *approach gets the approach speed.
+ */
+float cr_solver_impact(carom_world *w, cr_manifold *m, float *approach)
+{
+    int it, k;
+    float total = 0.0f, fastest = 0.0f;
+    for (k = 0; k < m->count; ++k) {
+        m->pts[k].pn = 0.0f;
+        m->pts[k].pt = 0.0f;
+    }
+    cr_prepare_manifold(w, m, 0);
+    for (it = 0; it < CR_IMPACT_ITERATIONS; ++it)
+        cr_solve_manifold(w, m);
+    for (k = 0; k < m->count; ++k) {
+        total = cr_add(total, m->pts[k].pn);
+        fastest = cr_max(fastest, m->pts[k].approach);
+    }
+    *approach = fastest;
+    return total;
 }
 
 /* Separation of point p now, from its separation at detection and the

@@ -44,6 +44,7 @@ const char *carom_status_string(carom_status status)
 static const char *const cr_method_names[CAROM_METHOD_COUNT] = {
     "discrete",
     "events",
+    "first-impact",
 };
 
 const char *carom_method_name(carom_method method)

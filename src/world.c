@@ -21,7 +21,11 @@ carom_world_def carom_default_world_def(void)
     carom_world_def d;
     d.gravity = cr_v(0.0f, CAROM_DEFAULT_GRAVITY_Y);
     d.dt = CAROM_DEFAULT_DT;
+#if CAROM_ENABLE_EVENTS
+    d.method = CAROM_METHOD_EVENTS;
+#else
     d.method = CAROM_METHOD_DISCRETE;
+#endif
     d.max_bodies = CAROM_DEFAULT_MAX_BODIES;
     d.max_pairs = 0;
     d.max_events = CAROM_DEFAULT_MAX_EVENTS;
@@ -38,8 +42,10 @@ static carom_status cr_method_available(carom_method m)
 {
     if ((int)m < 0 || m >= CAROM_METHOD_COUNT)
         return CAROM_ERR_BAD_METHOD;
-    if (m == CAROM_METHOD_EVENTS)
-        return CAROM_ERR_DISABLED; /* not built yet: see issue 3 */
+#if !CAROM_ENABLE_EVENTS
+    if (m != CAROM_METHOD_DISCRETE)
+        return CAROM_ERR_DISABLED;
+#endif
     return CAROM_OK;
 }
 
@@ -72,7 +78,7 @@ carom_status carom_world_def_validate(const carom_world_def *d)
 /* ---- memory layout ------------------------------------------------------------ */
 
 typedef struct cr_layout {
-    size_t world, bodies, proxies, proxy_tmp, pairs, pair_tmp, manifolds,
+    size_t world, bodies, proxies, proxy_tmp, pairs, pair_tmp, pair_toi, manifolds,
         prev_manifolds, events, total;
 } cr_layout;
 
@@ -100,6 +106,7 @@ static int cr_layout_of(const carom_world_def *d, cr_layout *l)
     l->proxy_tmp = at; at += cr_round_up(nb * sizeof(cr_proxy));
     l->pairs = at; at += cr_round_up(np * sizeof(cr_pair));
     l->pair_tmp = at; at += cr_round_up(np * sizeof(cr_pair));
+    l->pair_toi = at; at += cr_round_up(np * sizeof(float));
     l->manifolds = at; at += cr_round_up(np * sizeof(cr_manifold));
     l->prev_manifolds = at; at += cr_round_up(np * sizeof(cr_manifold));
     l->events = at; at += cr_round_up(ne * sizeof(carom_event));
@@ -154,8 +161,12 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->proxy_tmp = (cr_proxy *)(void *)(base + l.proxy_tmp);
     w->pairs = (cr_pair *)(void *)(base + l.pairs);
     w->pair_tmp = (cr_pair *)(void *)(base + l.pair_tmp);
+    w->pair_toi = (float *)(void *)(base + l.pair_toi);
     w->pair_count = 0;
     w->pairs_dropped = 0;
+    w->toi_queries = 0;
+    w->toi_early_outs = 0;
+    w->impacts_total = 0;
     w->manifolds = (cr_manifold *)(void *)(base + l.manifolds);
     w->prev_manifolds = (cr_manifold *)(void *)(base + l.prev_manifolds);
     w->manifold_count = 0;
@@ -352,6 +363,24 @@ static void cr_prime(carom_world *w)
 }
 
 /*
+ * Contacts where the bodies are now: find them, solve impulses (restitution
+ * for impacts, resting forces otherwise), record impacts at time t, remove
+ * overlap, keep the impulses for the next step. The whole collision work of
+ * the discrete method; the resting-contact stage of the events methods.
+ */
+static carom_status cr_resolve_contacts(carom_world *w, float t)
+{
+    cr_broadphase(w, w->def.linear_slop);
+    cr_find_contacts(w);
+    cr_solver_prepare(w, 0);
+    cr_solver_velocities(w, w->def.velocity_iterations);
+    cr_record_impacts(w, t);
+    cr_solver_positions(w);
+    cr_solver_store(w);
+    return w->pairs_dropped > 0 ? CAROM_ERR_PAIR_CAPACITY : CAROM_OK;
+}
+
+/*
  * One step of the discrete method:
  *   integrate -> broadphase -> narrowphase -> impulses -> projection.
  * Contacts are found where the bodies are at the end of the step, so an
@@ -360,22 +389,28 @@ static void cr_prime(carom_world *w)
  */
 static carom_status cr_step_discrete(carom_world *w)
 {
-    carom_status st = CAROM_OK;
+    carom_status st = CAROM_OK, st2;
     float t1 = cr_mul((float)(w->steps + 1), w->def.dt);
-
     if (!cr_integrate(w, w->def.dt))
         st = CAROM_ERR_NOT_FINITE;
-    cr_broadphase(w, w->def.linear_slop);
-    if (w->pairs_dropped > 0 && st == CAROM_OK)
-        st = CAROM_ERR_PAIR_CAPACITY;
-    cr_find_contacts(w);
-    cr_solver_prepare(w, 0);
-    cr_solver_velocities(w, w->def.velocity_iterations);
-    cr_record_impacts(w, t1);
-    cr_solver_positions(w);
-    cr_solver_store(w);
-    return st;
+    st2 = cr_resolve_contacts(w, t1);
+    return st != CAROM_OK ? st : st2;
 }
+
+#if CAROM_ENABLE_EVENTS
+/* The events methods: impacts in time order inside the step (events.c),
+ * then resting contacts as in the discrete method. */
+static carom_status cr_step_in_time_order(carom_world *w)
+{
+    float t1 = cr_mul((float)(w->steps + 1), w->def.dt);
+    carom_status st = cr_step_events(w);
+    int dropped = w->pairs_dropped;
+    carom_status st2 = cr_resolve_contacts(w, t1);
+    if (st == CAROM_OK && dropped > 0)
+        st = CAROM_ERR_PAIR_CAPACITY;
+    return st != CAROM_OK ? st : st2;
+}
+#endif
 
 carom_status carom_world_step(carom_world *w)
 {
@@ -390,10 +425,17 @@ carom_status carom_world_step(carom_world *w)
     case CAROM_METHOD_DISCRETE:
         st = cr_step_discrete(w);
         break;
+#if CAROM_ENABLE_EVENTS
+    case CAROM_METHOD_EVENTS:
+    case CAROM_METHOD_FIRST_IMPACT:
+        st = cr_step_in_time_order(w);
+        break;
+#endif
     default:
         return CAROM_ERR_BAD_METHOD;
     }
     ++w->steps;
+    w->impacts_total += w->event_count;
     if (st == CAROM_OK && w->events_dropped > 0)
         st = CAROM_ERR_EVENT_CAPACITY;
     return st;
@@ -421,4 +463,15 @@ const carom_event *carom_world_events(const carom_world *w, int *count)
 int carom_world_events_dropped(const carom_world *w)
 {
     return w ? w->events_dropped : 0;
+}
+
+carom_status carom_world_get_stats(const carom_world *w, carom_stats *out)
+{
+    if (!w || !out)
+        return CAROM_ERR_NULL;
+    out->steps = w->steps;
+    out->impacts = w->impacts_total;
+    out->toi_queries = w->toi_queries;
+    out->toi_early_outs = w->toi_early_outs;
+    return CAROM_OK;
 }

@@ -11,7 +11,8 @@ START_TEST(test_default_world_def_matches_config_header)
     carom_world_def d = carom_default_world_def();
     ck_assert(d.gravity.x == 0.0f && d.gravity.y == CAROM_DEFAULT_GRAVITY_Y);
     ck_assert(d.dt == CAROM_DEFAULT_DT);
-    ck_assert_int_eq(d.method, CAROM_METHOD_DISCRETE);
+    ck_assert_int_eq(d.method, CAROM_ENABLE_EVENTS ? CAROM_METHOD_EVENTS
+                                                   : CAROM_METHOD_DISCRETE);
     ck_assert_int_eq(d.max_bodies, CAROM_DEFAULT_MAX_BODIES);
     ck_assert(d.rest_speed == CAROM_DEFAULT_REST_SPEED);
     ck_assert_int_eq(carom_world_def_validate(&d), CAROM_OK);
