@@ -26,10 +26,12 @@
  * pair at a time, so a row of touching balls hit at one end passes the
  * impulse along pair by pair (Newton's cradle), deterministically.
  *
- * Bounds: the loop processes at most max_events impacts per step; past
- * that the step ends as the discrete method would (every overlap still
- * resolved by the solver, no body lost) and returns
- * CAROM_ERR_EVENT_CAPACITY.
+ * Bounds: the loop processes at most max_events impacts per step. At the
+ * cap, motion stops at the instant of the first impact not taken: every
+ * body is advanced to that instant only (the rest of the step's motion is
+ * dropped, so nothing passes through an impact it was not given), the
+ * pending impacts are taken at the start of the next step, and the step
+ * returns CAROM_ERR_EVENT_CAPACITY.
  */
 #include "internal.h"
 
@@ -221,6 +223,7 @@ carom_status cr_step_events(carom_world *w)
     int i, k, impacts = 0, loops = 0;
     int max_loops = 4 * w->def.max_events + 64;
     int recompute_all = w->method == CAROM_METHOD_EVENTS;
+    float t_stop = dt;
 
     /* 1. drifts */
     for (i = 0; i < w->body_count; ++i) {
@@ -253,9 +256,12 @@ carom_status cr_step_events(carom_world *w)
         float t = w->pair_toi[k];
         int a = w->pairs[k].a, b = w->pairs[k].b, j, hit;
         if (impacts >= w->def.max_events || ++loops > max_loops) {
-            /* the rest of the step's impacts go to the end-of-step solver,
-             * which resolves (and counts) them as the discrete method does */
+            /* cap: motion stops at this instant for the rest of the step,
+             * so no body moves past an impact it was not given; the
+             * pending impacts are taken at the start of the next step */
             st = CAROM_ERR_EVENT_CAPACITY;
+            ++w->events_dropped;
+            t_stop = t;
             break;
         }
         hit = cr_impact(w, k, t, t_start);
@@ -290,18 +296,18 @@ carom_status cr_step_events(carom_world *w)
         cr_body *b = &w->bodies[i];
         cr_v2 acc1;
         float alpha1;
-        cr_body_sync(b, dt);
+        cr_body_sync(b, t_stop);
         b->t_sync = 0.0f;
         if (b->type != CAROM_BODY_DYNAMIC)
             continue;
         if (!cr_body_forces(w, i, b, &acc1, &alpha1) && st == CAROM_OK)
             st = CAROM_ERR_NOT_FINITE;
-        b->vel = cr_vadd(cr_vmadd(b->vel, cr_neg(dt), b->acc_c),
-                         cr_vscale(cr_mul(0.5f, dt), cr_vsub(acc1, b->acc)));
+        b->vel = cr_vadd(cr_vmadd(b->vel, cr_neg(t_stop), b->acc_c),
+                         cr_vscale(cr_mul(0.5f, t_stop), cr_vsub(acc1, b->acc)));
         b->acc = acc1;
 #if CAROM_ENABLE_ROTATION
-        b->w = cr_add(cr_sub(b->w, cr_mul(dt, b->alpha_c)),
-                      cr_mul(cr_mul(0.5f, dt), cr_sub(alpha1, b->alpha)));
+        b->w = cr_add(cr_sub(b->w, cr_mul(t_stop, b->alpha_c)),
+                      cr_mul(cr_mul(0.5f, t_stop), cr_sub(alpha1, b->alpha)));
         b->alpha = alpha1;
 #endif
     }

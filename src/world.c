@@ -286,6 +286,33 @@ carom_method carom_world_get_method(const carom_world *w)
 
 /* ---- the step ------------------------------------------------------------------ */
 
+/*
+ * Events methods: a contact approaching faster than rest_speed at the end of
+ * the step is an impact (one whose instant fell at the step boundary, or
+ * one the event cap left over). The end-of-step solver leaves it alone; the
+ * next step's event loop finds the pair touching and approaching and takes
+ * the impact at its start, in time order with the others.
+ */
+static void cr_defer_impacts(carom_world *w)
+{
+    int i, k, kept = 0;
+    for (i = 0; i < w->manifold_count; ++i) {
+        cr_manifold *m = &w->manifolds[i];
+        const cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
+        int impact = 0;
+        for (k = 0; k < m->count; ++k) {
+            cr_v2 ra = cr_vsub(m->pts[k].p, A->x), rb = cr_vsub(m->pts[k].p, B->x);
+            cr_v2 vb = cr_vadd(B->vel, cr_vcross_sv(B->w, rb));
+            cr_v2 va = cr_vadd(A->vel, cr_vcross_sv(A->w, ra));
+            impact |= cr_gt(cr_neg(cr_vdot(cr_vsub(vb, va), m->n)),
+                            w->def.rest_speed);
+        }
+        if (!impact)
+            w->manifolds[kept++] = *m;
+    }
+    w->manifold_count = kept;
+}
+
 static void cr_find_contacts(carom_world *w)
 {
     int i;
@@ -368,10 +395,13 @@ static void cr_prime(carom_world *w)
  * overlap, keep the impulses for the next step. The whole collision work of
  * the discrete method; the resting-contact stage of the events methods.
  */
-static carom_status cr_resolve_contacts(carom_world *w, float t)
+static carom_status cr_resolve_contacts(carom_world *w, float t,
+                                        int defer_impacts)
 {
     cr_broadphase(w, w->def.linear_slop);
     cr_find_contacts(w);
+    if (defer_impacts)
+        cr_defer_impacts(w);
     cr_solver_prepare(w, 0);
     cr_solver_velocities(w, w->def.velocity_iterations);
     cr_record_impacts(w, t);
@@ -393,19 +423,19 @@ static carom_status cr_step_discrete(carom_world *w)
     float t1 = cr_mul((float)(w->steps + 1), w->def.dt);
     if (!cr_integrate(w, w->def.dt))
         st = CAROM_ERR_NOT_FINITE;
-    st2 = cr_resolve_contacts(w, t1);
+    st2 = cr_resolve_contacts(w, t1, 0);
     return st != CAROM_OK ? st : st2;
 }
 
 #if CAROM_ENABLE_EVENTS
 /* The events methods: impacts in time order inside the step (events.c),
- * then resting contacts as in the discrete method. */
+ * then resting contacts as in the discrete method (impacts deferred). */
 static carom_status cr_step_in_time_order(carom_world *w)
 {
     float t1 = cr_mul((float)(w->steps + 1), w->def.dt);
     carom_status st = cr_step_events(w);
     int dropped = w->pairs_dropped;
-    carom_status st2 = cr_resolve_contacts(w, t1);
+    carom_status st2 = cr_resolve_contacts(w, t1, 1);
     if (st == CAROM_OK && dropped > 0)
         st = CAROM_ERR_PAIR_CAPACITY;
     return st != CAROM_OK ? st : st2;

@@ -1,0 +1,473 @@
+/*
+ * test_events.c -- the events method: impacts at their exact instants, in
+ * time order. Expected values come from the design note's example 2
+ * (ERRATA 3), ballistic formulas, and conservation laws.
+ */
+#include <string.h>
+
+#include "test_util.h"
+
+static carom_world_def def_for(carom_method m, float gy, float dt, int n)
+{
+    carom_world_def wd = carom_default_world_def();
+    wd.method = m;
+    wd.gravity.x = 0.0f;
+    wd.gravity.y = gy;
+    wd.dt = dt;
+    wd.max_bodies = n;
+    return wd;
+}
+
+static int add_static_box(tw *t, float hx, float hy, float x, float y, float e)
+{
+    carom_body_def g = carom_default_body_def();
+    g.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&g, hx, hy);
+    g.position.x = x;
+    g.position.y = y;
+    g.restitution = e;
+    g.friction = 0.0f;
+    return tw_add(t, &g);
+}
+
+static int add_circle(tw *t, float r, float x, float y, float vx, float vy,
+                      float e)
+{
+    carom_body_def bd = carom_default_body_def();
+    bd.radius = r;
+    bd.position.x = x;
+    bd.position.y = y;
+    bd.velocity.x = vx;
+    bd.velocity.y = vy;
+    bd.restitution = e;
+    bd.friction = 0.0f;
+    return tw_add(t, &bd);
+}
+
+/*
+ * The note's example 2, dt = 1, equal masses: A at -1 with v = 2, B at 1
+ * with v = -1, as points; as circles of R = 1 the centres start at -2 and
+ * 2. Contact at 2/3 dt, then (ERRATA 3, the note is right here)
+ *   v_A^1 = (1 - 3 c_r) / 2,  v_B^1 = (1 + 3 c_r) / 2,
+ *   x_A^1 = -1 + (3/2 - c_r/2) dt,  x_B^1 = 1 + (-1/2 + c_r/2) dt
+ * (minus / plus R for the circles' centres).
+ */
+START_TEST(test_note_example2_contact_at_two_thirds_of_the_step)
+{
+    static const double crs[] = {0.0, 0.5, 1.0};
+    int i;
+    for (i = 0; i < 3; ++i) {
+        double cr = crs[i];
+        carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 1.0f, 2);
+        tw t = tw_make(&wd);
+        int a = add_circle(&t, 1.0f, -2.0f, 0.0f, 2.0f, 0.0f, (float)cr);
+        int b = add_circle(&t, 1.0f, 2.0f, 0.0f, -1.0f, 0.0f, (float)cr);
+        const carom_event *ev;
+        int n;
+        tw_steps(&t, 1);
+        ev = carom_world_events(t.w, &n);
+        ck_assert_int_eq(n, 1);
+        ck_assert_close(ev[0].t, 2.0 / 3.0, 1e-6);
+        ck_assert_close(ev[0].approach_speed, 3.0, 1e-6);
+        ck_assert_close(tw_state(&t, a).velocity.x, (1.0 - 3.0 * cr) / 2.0, 1e-6);
+        ck_assert_close(tw_state(&t, b).velocity.x, (1.0 + 3.0 * cr) / 2.0, 1e-6);
+        ck_assert_close(tw_state(&t, a).position.x, -1.0 + (1.5 - cr / 2.0) - 1.0, 1e-6);
+        ck_assert_close(tw_state(&t, b).position.x, 1.0 + (-0.5 + cr / 2.0) + 1.0, 1e-6);
+        tw_free(&t);
+    }
+}
+END_TEST
+
+/* The first-impact method is the note's own: for one impact in a step it
+ * must give the same answer as events. */
+START_TEST(test_first_impact_method_matches_events_on_a_single_impact)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_FIRST_IMPACT, 0.0f, 1.0f, 2);
+    tw t = tw_make(&wd);
+    int a = add_circle(&t, 1.0f, -2.0f, 0.0f, 2.0f, 0.0f, 0.5f);
+    int b = add_circle(&t, 1.0f, 2.0f, 0.0f, -1.0f, 0.0f, 0.5f);
+    tw_steps(&t, 1);
+    ck_assert_close(tw_state(&t, a).position.x, -1.0 + 1.25 - 1.0, 1e-6);
+    ck_assert_close(tw_state(&t, a).velocity.x, -0.25, 1e-6);
+    ck_assert_close(tw_state(&t, b).velocity.x, 1.25, 1e-6);
+    tw_free(&t);
+}
+END_TEST
+
+/*
+ * ERRATA 4, measured: the discrete method resolves the same impact at the
+ * end of the step. With the overlap v_rel (dt - t*) projected away by
+ * inverse mass, body A ends e v_rel (dt - t*) m_B / M away from the exact
+ * path (the note's bound without projection is (1 + e) v_rel (dt - t*)
+ * m_B / M), and the error does not decay afterwards.
+ */
+START_TEST(test_discrete_position_error_matches_derivation_and_never_decays)
+{
+    double e = 0.6, ma = 1.0, mb = 3.0, va = 0.5, vb = -0.3, dt = 0.1;
+    double gap = 0.05, tstar = gap / (va - vb); /* 0.0625: inside step 1 */
+    double expected = e * (va - vb) * (dt - tstar) * mb / (ma + mb);
+    carom_method methods[2] = {CAROM_METHOD_EVENTS, CAROM_METHOD_DISCRETE};
+    double xa[2][2];
+    int m, k;
+    for (m = 0; m < 2; ++m) {
+        carom_world_def wd = def_for(methods[m], 0.0f, (float)dt, 2);
+        carom_body_def bd = carom_default_body_def();
+        tw t = tw_make(&wd);
+        int a, b;
+        bd.radius = 0.5f;
+        bd.friction = 0.0f;
+        bd.restitution = (float)e;
+        bd.mass = (float)ma;
+        bd.position.x = -0.5f - (float)gap;
+        bd.velocity.x = (float)va;
+        a = tw_add(&t, &bd);
+        bd.mass = (float)mb;
+        bd.position.x = 0.5f;
+        bd.velocity.x = (float)vb;
+        b = tw_add(&t, &bd);
+        (void)b;
+        wd.rest_speed = 0.0f;
+        tw_steps(&t, 1);
+        xa[m][0] = tw_state(&t, a).position.x;
+        tw_steps(&t, 20);
+        xa[m][1] = tw_state(&t, a).position.x;
+        tw_free(&t);
+    }
+    for (k = 0; k < 2; ++k)
+        ck_assert_msg(fabs((xa[1][k] - xa[0][k]) - expected) < 2e-3 * expected,
+                      "discrete - events = %.9g, derived %.9g (after %s)",
+                      xa[1][k] - xa[0][k], expected, k ? "21 steps" : "1 step");
+}
+END_TEST
+
+/*
+ * A ball dropped from h = 10 m (e = 0.8, dt = 1/60) hits the ground at
+ * t1 = sqrt(2h/g) with v1 = sqrt(2gh); then v_{k+1} = e v_k and
+ * t_{k+1} = t_k + 2 v_{k+1} / g. The first 8 impacts must match to 1e-5.
+ */
+START_TEST(test_bouncing_ball_impact_times_and_speeds_are_analytic)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, -10.0f, 1.0f / 60.0f, 2);
+    tw t = tw_make(&wd);
+    double g = 10.0, h = 10.0, e = 0.8, tk = sqrt(2.0 * h / g), vk = sqrt(2.0 * g * h);
+    int found = 0, step;
+    add_static_box(&t, 5.0f, 0.5f, 0.0f, -0.5f, 0.0f);
+    add_circle(&t, 0.5f, 0.0f, 10.5f, 0.0f, 0.0f, (float)e);
+    for (step = 0; step < 60 * 20 && found < 8; ++step) {
+        int n, i;
+        const carom_event *ev;
+        tw_steps(&t, 1);
+        ev = carom_world_events(t.w, &n);
+        for (i = 0; i < n && found < 8; ++i) {
+            ck_assert_msg(fabs(ev[i].t - tk) <= 1e-5 * tk,
+                          "impact %d at %.9g, analytic %.9g", found + 1, ev[i].t, tk);
+            ck_assert_msg(fabs(ev[i].approach_speed - vk) <= 1e-5 * vk,
+                          "impact %d speed %.9g, analytic %.9g", found + 1,
+                          ev[i].approach_speed, vk);
+            ++found;
+            vk *= e;
+            tk += 2.0 * vk / g;
+        }
+    }
+    ck_assert_int_eq(found, 8);
+    tw_free(&t);
+}
+END_TEST
+
+/* A circle of radius 0.05 at 1000 m/s against a 2 cm thick wall: it moves
+ * 16.7 m per step, so only the impact time keeps it on its side. */
+static void bullet(carom_body_type wall_type)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 1.0f / 60.0f, 2);
+    carom_body_def wall = carom_default_body_def();
+    tw t = tw_make(&wd);
+    int b, k;
+    wall.type = wall_type;
+    carom_body_def_set_box(&wall, 0.01f, 2.0f);
+    wall.position.x = 5.0f;
+    wall.density = 1000.0f;
+    wall.friction = 0.0f;
+    wall.restitution = 0.5f;
+    tw_add(&t, &wall);
+    b = add_circle(&t, 0.05f, 0.0f, 0.0f, 1000.0f, 0.0f, 0.5f);
+    for (k = 0; k < 30; ++k) {
+        carom_body_state sb, sw;
+        tw_steps(&t, 1);
+        sb = tw_state(&t, b);
+        sw = tw_state(&t, 0);
+        ck_assert_msg(sb.position.x + 0.05f <= sw.position.x - 0.01f + 1e-3f,
+                      "step %d: bullet at %g, wall at %g", k, (double)sb.position.x,
+                      (double)sw.position.x);
+    }
+    tw_free(&t);
+}
+
+START_TEST(test_fast_bullet_never_passes_a_thin_static_wall)
+{
+    bullet(CAROM_BODY_STATIC);
+}
+END_TEST
+
+START_TEST(test_fast_bullet_never_passes_a_thin_dynamic_wall)
+{
+    bullet(CAROM_BODY_DYNAMIC);
+}
+END_TEST
+
+static void momenta(const tw *t, int n, double P[2], double *L, double *E)
+{
+    int i;
+    P[0] = P[1] = 0.0;
+    *L = 0.0;
+    *E = 0.0;
+    for (i = 0; i < n; ++i) {
+        carom_body_state s = tw_state(t, i);
+        float m, I;
+        carom_body_get_mass(t->w, i, &m, &I);
+        P[0] += (double)m * s.velocity.x;
+        P[1] += (double)m * s.velocity.y;
+        *L += m * ((double)s.center.x * s.velocity.y - (double)s.center.y * s.velocity.x) +
+              (double)I * s.angular_velocity;
+        *E += 0.5 * m * ((double)s.velocity.x * s.velocity.x + (double)s.velocity.y * s.velocity.y) +
+              0.5 * I * (double)s.angular_velocity * s.angular_velocity;
+    }
+}
+
+/* Twelve circles of three masses collide freely (no gravity, no walls,
+ * e = 0.5): total momentum is conserved to float rounding. */
+START_TEST(test_isolated_bodies_conserve_momentum)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 1.0f / 60.0f, 12);
+    tw t = tw_make(&wd);
+    double P0[2], P1[2], L0, L1, E0, E1, scale = 0.0;
+    int i;
+    for (i = 0; i < 12; ++i) {
+        carom_body_def bd = carom_default_body_def();
+        bd.radius = 0.2f + 0.1f * (float)(i % 3);
+        bd.density = 1.0f + (float)(i % 3) * 4.0f;
+        bd.position.x = -3.0f + (float)(i % 4) * 2.0f;
+        bd.position.y = -2.0f + (float)(i / 4) * 2.0f;
+        bd.velocity.x = (float)((i * 7) % 5) - 2.0f;
+        bd.velocity.y = (float)((i * 3) % 5) - 2.0f;
+        bd.restitution = 0.5f;
+        bd.friction = 0.0f;
+        tw_add(&t, &bd);
+    }
+    momenta(&t, 12, P0, &L0, &E0);
+    for (i = 0; i < 12; ++i) {
+        float m;
+        carom_body_state s = tw_state(&t, i);
+        carom_body_get_mass(t.w, i, &m, NULL);
+        scale += m * sqrt((double)s.velocity.x * s.velocity.x + (double)s.velocity.y * s.velocity.y);
+    }
+    tw_steps(&t, 240);
+    momenta(&t, 12, P1, &L1, &E1);
+    ck_assert_msg(E1 < E0 * 0.999, "no collision happened (E %g -> %g)", E0, E1);
+    ck_assert_msg(fabs(P1[0] - P0[0]) < 1e-6 * scale, "px %g -> %g", P0[0], P1[0]);
+    ck_assert_msg(fabs(P1[1] - P0[1]) < 1e-6 * scale, "py %g -> %g", P0[1], P1[1]);
+    tw_free(&t);
+}
+END_TEST
+
+/* A box struck off-centre by a circle: linear and angular momentum (about
+ * the origin) are conserved through the impact. */
+START_TEST(test_polygon_hit_off_centre_conserves_linear_and_angular_momentum)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 1.0f / 60.0f, 2);
+    carom_body_def bd = carom_default_body_def();
+    tw t = tw_make(&wd);
+    double P0[2], P1[2], L0, L1, E0, E1;
+    carom_body_def_set_box(&bd, 1.0f, 0.5f);
+    bd.restitution = 0.7f;
+    bd.friction = 0.3f;
+    bd.angular_velocity = 0.5f;
+    tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    bd.radius = 0.25f;
+    bd.mass = 0.5f;
+    bd.restitution = 0.7f;
+    bd.friction = 0.3f;
+    bd.position.x = -0.6f;
+    bd.position.y = 2.0f;
+    bd.velocity.x = 0.5f;
+    bd.velocity.y = -6.0f;
+    tw_add(&t, &bd);
+    momenta(&t, 2, P0, &L0, &E0);
+    tw_steps(&t, 60);
+    momenta(&t, 2, P1, &L1, &E1);
+    ck_assert_close(P1[0], P0[0], 1e-5);
+    ck_assert_close(P1[1], P0[1], 1e-5);
+    ck_assert_close(L1, L0, 1e-5);
+    ck_assert(E1 < E0); /* e < 1 and friction take energy out */
+    ck_assert(fabs(tw_state(&t, 0).angular_velocity - 0.5) > 0.1); /* it was hit */
+    tw_free(&t);
+}
+END_TEST
+
+/* 1000 elastic circles in a closed box (rest-speed 0: every contact is an
+ * impact): kinetic energy is kept to 1e-5 over 600 steps of 1/60 s. */
+START_TEST(test_elastic_gas_of_1000_circles_keeps_kinetic_energy)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 1.0f / 60.0f, 1004);
+    tw t;
+    double P[2], L, E0, E1;
+    unsigned seed = 7u;
+    int i, j, k = 0;
+    carom_stats st;
+    wd.rest_speed = 0.0f;
+    wd.max_pairs = 8000;
+    t = tw_make(&wd);
+    add_static_box(&t, 10.5f, 0.5f, 0.0f, -10.5f, 1.0f);
+    add_static_box(&t, 10.5f, 0.5f, 0.0f, 10.5f, 1.0f);
+    add_static_box(&t, 0.5f, 10.5f, -10.5f, 0.0f, 1.0f);
+    add_static_box(&t, 0.5f, 10.5f, 10.5f, 0.0f, 1.0f);
+    for (i = 0; i < 32 && k < 1000; ++i)
+        for (j = 0; j < 32 && k < 1000; ++j, ++k) {
+            float a, v;
+            seed = seed * 1664525u + 1013904223u;
+            a = 6.2831853f * (float)(seed >> 8) / 16777216.0f;
+            seed = seed * 1664525u + 1013904223u;
+            v = 0.5f + 2.5f * (float)(seed >> 8) / 16777216.0f;
+            add_circle(&t, 0.1f, -10.0f + 0.625f * ((float)i + 0.5f),
+                       -10.0f + 0.625f * ((float)j + 0.5f),
+                       v * carom_rot_from_angle(a).c, v * carom_rot_from_angle(a).s, 1.0f);
+        }
+    momenta(&t, 1004, P, &L, &E0);
+    tw_steps(&t, 600);
+    momenta(&t, 1004, P, &L, &E1);
+    carom_world_get_stats(t.w, &st);
+    ck_assert_msg(st.impacts > 5000, "only %ld impacts", st.impacts);
+    ck_assert_msg(fabs(E1 - E0) <= 1e-5 * E0, "kinetic energy %.9g -> %.9g (%.3g)",
+                  E0, E1, (E1 - E0) / E0);
+    /* the closest-approach early-out ruled pairs out before root finding */
+    ck_assert_int_gt(st.toi_early_outs, 0);
+    ck_assert_int_le(st.toi_early_outs, st.toi_queries);
+    tw_free(&t);
+}
+END_TEST
+
+/* Newton's cradle: five touching equal balls, the first struck at 2 m/s
+ * (e = 1). Pairwise impacts in (a, b) order pass the momentum down the
+ * row: the last ball leaves at 2 m/s and the others stop. */
+START_TEST(test_row_of_touching_balls_passes_the_impulse_along_in_order)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 1.0f / 60.0f, 6);
+    tw t = tw_make(&wd);
+    int i, n;
+    const carom_event *ev;
+    add_circle(&t, 0.5f, -3.0f, 0.0f, 2.0f, 0.0f, 1.0f); /* striker */
+    for (i = 0; i < 5; ++i)
+        add_circle(&t, 0.5f, (float)i, 0.0f, 0.0f, 0.0f, 1.0f);
+    for (i = 0; i < 120; ++i) { /* contact at t = 1 s */
+        tw_steps(&t, 1);
+        ev = carom_world_events(t.w, &n);
+        if (n > 0)
+            break;
+    }
+    ck_assert_int_eq(n, 5);
+    for (i = 0; i < 5; ++i) {
+        ck_assert_int_eq(ev[i].body_a, i);
+        ck_assert_int_eq(ev[i].body_b, i + 1);
+        ck_assert(ev[i].t == ev[0].t); /* simultaneous */
+    }
+    for (i = 0; i < 5; ++i)
+        ck_assert_close(tw_state(&t, i).velocity.x, 0.0, 1e-6);
+    ck_assert_close(tw_state(&t, 5).velocity.x, 2.0, 1e-6);
+    tw_free(&t);
+}
+END_TEST
+
+/* A light ball between a heavy slab and a wall (e = 1) is hit many times
+ * per step. With room for 8 impacts the step reports the cap, and still
+ * no body passes through another. */
+START_TEST(test_event_cap_is_reported_and_bodies_stay_ordered)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 1.0f / 60.0f, 3);
+    carom_body_def slab = carom_default_body_def();
+    tw t;
+    int ball, s, k, capped = 0;
+    wd.max_events = 8;
+    wd.rest_speed = 0.0f;
+    t = tw_make(&wd);
+    add_static_box(&t, 0.5f, 2.0f, 2.5f, 0.0f, 1.0f);
+    ball = add_circle(&t, 0.1f, 1.5f, 0.0f, 0.0f, 0.0f, 1.0f);
+    carom_body_def_set_box(&slab, 0.5f, 1.0f);
+    slab.density = 1000.0f;
+    slab.position.x = 0.0f;
+    slab.velocity.x = 3.0f;
+    slab.restitution = 1.0f;
+    slab.friction = 0.0f;
+    s = tw_add(&t, &slab);
+    for (k = 0; k < 60; ++k) {
+        carom_status st = carom_world_step(t.w);
+        carom_body_state sb = tw_state(&t, ball), ss = tw_state(&t, s);
+        ck_assert_msg(st == CAROM_OK || st == CAROM_ERR_EVENT_CAPACITY,
+                      "status %s", carom_status_string(st));
+        capped |= st == CAROM_ERR_EVENT_CAPACITY;
+        ck_assert_msg(sb.position.x <= 2.0f - 0.1f + 0.02f, "ball went through the wall: %g",
+                      (double)sb.position.x);
+        ck_assert_msg(ss.position.x + 0.5f <= sb.position.x - 0.1f + 0.02f,
+                      "slab went through the ball: %g vs %g", (double)ss.position.x,
+                      (double)sb.position.x);
+    }
+    ck_assert(capped);
+    tw_free(&t);
+}
+END_TEST
+
+/* Resting contact under the events method: the 5-box stack holds and a
+ * ball with e = 0.8 comes to rest. */
+START_TEST(test_events_method_keeps_stacks_standing_and_balls_settling)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, -10.0f, 1.0f / 60.0f, 8);
+    carom_body_def bd = carom_default_body_def();
+    tw t = tw_make(&wd);
+    int i, k, ids[5], ball;
+    double worst = 0.0;
+    add_static_box(&t, 20.0f, 0.5f, 0.0f, -0.5f, 0.0f);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    for (i = 0; i < 5; ++i) {
+        bd.position.y = 0.5f + (float)i;
+        ids[i] = tw_add(&t, &bd);
+    }
+    ball = add_circle(&t, 0.25f, 5.0f, 2.25f, 0.0f, 0.0f, 0.8f);
+    for (k = 0; k < 600; ++k) {
+        tw_steps(&t, 1);
+        for (i = 0; i < 5; ++i) {
+            carom_body_state s = tw_state(&t, ids[i]);
+            double dx = s.position.x, dy = s.position.y - (0.5 + i);
+            if (sqrt(dx * dx + dy * dy) > worst)
+                worst = sqrt(dx * dx + dy * dy);
+        }
+    }
+    ck_assert_msg(worst < 1e-3, "stack moved %g m", worst);
+    ck_assert_close(tw_state(&t, ball).position.y, 0.25, 1e-3);
+    ck_assert(fabs(tw_state(&t, ball).velocity.y) < 1e-4);
+    tw_free(&t);
+}
+END_TEST
+
+Suite *suite_events(void)
+{
+    Suite *s = suite_create("events");
+    TCase *tn = tcase_create("note");
+    TCase *tc = tcase_create("conservation");
+    TCase *to = tcase_create("ordering");
+    tcase_set_timeout(tc, 120);
+    tcase_add_test(tn, test_note_example2_contact_at_two_thirds_of_the_step);
+    tcase_add_test(tn, test_first_impact_method_matches_events_on_a_single_impact);
+    tcase_add_test(tn, test_discrete_position_error_matches_derivation_and_never_decays);
+    tcase_add_test(tn, test_bouncing_ball_impact_times_and_speeds_are_analytic);
+    tcase_add_test(tn, test_fast_bullet_never_passes_a_thin_static_wall);
+    tcase_add_test(tn, test_fast_bullet_never_passes_a_thin_dynamic_wall);
+    tcase_add_test(tc, test_isolated_bodies_conserve_momentum);
+    tcase_add_test(tc, test_polygon_hit_off_centre_conserves_linear_and_angular_momentum);
+    tcase_add_test(tc, test_elastic_gas_of_1000_circles_keeps_kinetic_energy);
+    tcase_add_test(to, test_row_of_touching_balls_passes_the_impulse_along_in_order);
+    tcase_add_test(to, test_event_cap_is_reported_and_bodies_stay_ordered);
+    tcase_add_test(to, test_events_method_keeps_stacks_standing_and_balls_settling);
+    suite_add_tcase(s, tn);
+    suite_add_tcase(s, tc);
+    suite_add_tcase(s, to);
+    return s;
+}
