@@ -281,11 +281,34 @@ expect_rc 0 "--method discrete"
 check "--method discrete: one row per body" \
     test "$(wc -l <"$tmp/out")" -eq $((nbodies + 1))
 
+run run "$default_scene" --method events --steps 10
+expect_rc 0 "--method events"
+check "--method events: one row per body" \
+    test "$(wc -l <"$tmp/out")" -eq $((nbodies + 1))
+
+run run "$default_scene" --method first-impact --steps 10
+expect_rc 0 "--method first-impact"
+check "--method first-impact: one row per body" \
+    test "$(wc -l <"$tmp/out")" -eq $((nbodies + 1))
+
 run run "$tmp/ball.scene" --dt 0.01 --steps 1
 expect_rc 0 "--dt 0.01"
 awk -F, '$1 == "1" { found = 1; d = 3 - $3; if (d < 0.00049 || d > 0.00051) bad = 1 }
          END { exit bad || !found }' "$tmp/out"
 verdict $? "--dt 0.01: ball fell by g dt^2 / 2 = 0.0005 in one step"
+
+# A light ball between a fast heavy slab and a wall hits many times per
+# step: with max-events=4 the run must stop with exit 1 and say why.
+cat > "$tmp/cap.scene" <<'EOS'
+carom-scene 1
+world gravity=0,0 steps=120 max-events=4 rest-speed=0
+body box static half-extents=0.5,2 position=2.5,0 restitution=1 friction=0
+body circle radius=0.1 position=1.5,0 restitution=1 friction=0
+body box half-extents=0.5,1 position=0,0 velocity=3,0 density=1000 restitution=1 friction=0
+EOS
+run run "$tmp/cap.scene"
+expect_rc 1 "event cap reached"
+check "event cap: stderr names the cap" grep -q "max-events" "$tmp/err"
 
 # ---- summary -------------------------------------------------------------------
 

@@ -28,7 +28,8 @@ static const char usage[] =
     "options:\n"
     "  --steps N        number of steps (overrides the scene's steps=)\n"
     "  --dt DT          time step in seconds (overrides dt=)\n"
-    "  --method NAME    discrete or events (overrides method=)\n"
+    "  --method NAME    events (default), discrete or first-impact\n"
+    "                   (overrides method=; see docs/events.md)\n"
     "  --trace FILE     write every body's state at step 0 and after every\n"
     "                   step: step,t,body,x,y,angle,vx,vy,omega\n"
     "  --events FILE    write every impact, in time order:\n"
@@ -112,7 +113,7 @@ static int cmd_run(int argc, char **argv)
             } else if (strcmp(a, "--method") == 0) {
                 carom_method m;
                 if (carom_method_from_name(v, &m) != CAROM_OK)
-                    return usage_error("--method: unknown method '%s' (discrete, events)", v);
+                    return usage_error("--method: unknown method '%s' (events, discrete, first-impact)", v);
                 method = v;
             } else if (strcmp(a, "--trace") == 0) {
                 trace_path = v;

@@ -163,7 +163,7 @@ static int parse_world(parser *p, char *rest, scene *s)
             if (seen_before(p, &seen, 8u, key))
                 return -1;
             if (carom_method_from_name(val, &s->world.method) != CAROM_OK)
-                return fail(p, "method: unknown method '%s' (discrete, events)", val);
+                return fail(p, "method: unknown method '%s' (events, discrete, first-impact)", val);
         } else if (strcmp(key, "rest-speed") == 0) {
             if (seen_before(p, &seen, 16u, key) || parse_float(p, key, val, &s->world.rest_speed))
                 return -1;
