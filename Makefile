@@ -16,6 +16,12 @@ TOOL_CFLAGS := $(CFLAGS) -D_POSIX_C_SOURCE=200809L -Itools
 LIB_SRC := $(wildcard src/*.c)
 LIB_OBJ := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
 LIB     := $(BUILD)/libcarom.a
+# The same library with the op counters compiled in (CAROM_ENABLE_PROFILE):
+# build/carom links it so that `carom profile` can count; results are the
+# same bits, counting never changes the arithmetic.
+PROF_FLAGS := -DCAROM_ENABLE_PROFILE=1
+PROF_OBJ := $(LIB_SRC:src/%.c=$(BUILD)/profile/obj/%.o)
+PROF_LIB := $(BUILD)/profile/libcarom.a
 CLI     := $(BUILD)/carom
 TOOL_OBJ := $(BUILD)/tools/scene.o
 TEST_SRC := $(wildcard tests/test_*.c)
@@ -40,13 +46,23 @@ $(LIB): $(LIB_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
+$(BUILD)/profile/obj/%.o: src/%.c $(wildcard src/*.h include/*.h) | $(BUILD)/profile/obj
+	$(CC) $(CPPFLAGS) $(PROF_FLAGS) $(CFLAGS) -c $< -o $@
+
+$(PROF_LIB): $(PROF_OBJ)
+	rm -f $@
+	ar rcs $@ $^
+
 $(BUILD)/tools/%.o: tools/%.c $(wildcard tools/*.h include/*.h) | $(BUILD)/tools
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -c $< -o $@
 
-$(CLI): $(BUILD)/tools/carom_cli.o $(TOOL_OBJ) $(LIB)
+$(BUILD)/tools/carom_cli.o: tools/carom_cli.c $(wildcard tools/*.h include/*.h) | $(BUILD)/tools
+	$(CC) $(CPPFLAGS) $(PROF_FLAGS) $(TOOL_CFLAGS) -c $< -o $@
+
+$(CLI): $(BUILD)/tools/carom_cli.o $(TOOL_OBJ) $(PROF_LIB)
 	$(CC) $^ -o $@ -lm
 
-$(BUILD)/obj $(BUILD)/tools $(BUILD)/tests:
+$(BUILD)/obj $(BUILD)/tools $(BUILD)/tests $(BUILD)/profile/obj:
 	mkdir -p $@
 
 # ---- tests -------------------------------------------------------------------
@@ -58,9 +74,16 @@ $(TEST_BIN): $(TEST_SRC) tests/test_util.h $(TOOL_OBJ) $(LIB) | $(BUILD)/tests
 	$(CC) $(CPPFLAGS) -Isrc $(TOOL_CFLAGS) -Wno-double-promotion $(CHECK_CFLAGS) \
 	    $(TEST_SRC) $(TOOL_OBJ) $(LIB) -o $@ $(CHECK_LIBS) -lm
 
+# The whole suite again against the profiling build: same results, plus the
+# exact operation counts of tests/test_profile.c.
+$(TEST_BIN)_profile: $(TEST_SRC) tests/test_util.h $(TOOL_OBJ) $(PROF_LIB) | $(BUILD)/tests
+	$(CC) $(CPPFLAGS) $(PROF_FLAGS) -Isrc $(TOOL_CFLAGS) -Wno-double-promotion $(CHECK_CFLAGS) \
+	    $(TEST_SRC) $(TOOL_OBJ) $(PROF_LIB) -o $@ $(CHECK_LIBS) -lm
+
 unit: deps
-	@$(MAKE) --no-print-directory $(TEST_BIN)
+	@$(MAKE) --no-print-directory $(TEST_BIN) $(TEST_BIN)_profile
 	CK_DEFAULT_TIMEOUT=120 $(TEST_BIN)
+	CK_DEFAULT_TIMEOUT=120 $(TEST_BIN)_profile
 
 cli-test: $(CLI)
 	sh tests/cli_test.sh $(CLI)
@@ -73,8 +96,8 @@ readme-test: $(LIB) | $(BUILD)/tests
 
 # The library must not allocate, and must call no libm function but sqrtf:
 # inspect the undefined symbols of the built archive.
-check-symbols: $(LIB)
-	sh tools/check-symbols.sh $(LIB)
+check-symbols: $(LIB) $(PROF_LIB)
+	sh tools/check-symbols.sh $(LIB) $(PROF_LIB)
 
 # Every switch of carom_config.h builds, and removes (or adds) code.
 check-switches:

@@ -297,6 +297,61 @@ typedef struct carom_stats {
 
 carom_status carom_world_get_stats(const carom_world *w, carom_stats *out);
 
+/* ======================================================================
+ * Profiling: floating-point operations by kind and pipeline phase
+ * (needs CAROM_ENABLE_PROFILE; otherwise the calls that need counting
+ * return CAROM_ERR_DISABLED and the library contains no counter)
+ * ====================================================================== */
+
+/** Operation kinds (docs/cost-model.md says what counts as what). */
+typedef enum carom_op {
+    CAROM_OP_ADD, CAROM_OP_SUB, CAROM_OP_MUL, CAROM_OP_DIV, CAROM_OP_CMP,
+    CAROM_OP_SQRT, CAROM_OP_COUNT
+} carom_op;
+
+/** Pipeline phases. */
+typedef enum carom_phase {
+    CAROM_PHASE_INTEGRATION,   /**< "integration": Verlet drift and kick */
+    CAROM_PHASE_BROADPHASE,    /**< "broadphase": boxes, sort and sweep */
+    CAROM_PHASE_NARROWPHASE,   /**< "narrowphase": contact manifolds */
+    CAROM_PHASE_IMPACT_TIMING, /**< "impact_timing": time of impact, early-out */
+    CAROM_PHASE_IMPULSES,      /**< "impulse_resolution": impact impulses */
+    CAROM_PHASE_RESTING,       /**< "resting_contacts": resting forces, projection */
+    CAROM_PHASE_COUNT
+} carom_phase;
+
+/** Counters; the caller owns it, resets it, and attaches it to a world. */
+typedef struct carom_profile {
+    uint64_t ops[CAROM_PHASE_COUNT][CAROM_OP_COUNT];
+    uint64_t steps;      /**< steps taken while attached */
+    uint64_t body_steps; /**< sum over those steps of the body count */
+    uint64_t impacts;    /**< events recorded while attached */
+} carom_profile;
+
+/** A cost per operation kind, in the caller's unit ("add units" for the
+ * design note's table, cycles for the Cortex-M presets). */
+typedef struct carom_op_weights {
+    float w[CAROM_OP_COUNT];
+} carom_op_weights;
+
+void carom_profile_reset(carom_profile *p);
+
+/** Count the operations of this world's steps into p (NULL detaches).
+ * Counting is per library, not per world: attach to one world at a time. */
+carom_status carom_world_set_profile(carom_world *w, carom_profile *p);
+
+/** Presets: "seed" (the design note: add 1, sub 1, mul 1.5, div 4, cmp 1,
+ * sqrt 6), "cortex-m4f", "cortex-m0" (docs/cost-model.md gives sources). */
+carom_status carom_op_weights_preset(const char *name, carom_op_weights *out);
+
+/** Weighted sum of the counts of one phase, or of all if phase < 0. */
+float carom_profile_cost(const carom_profile *p, const carom_op_weights *wt,
+                         int phase);
+
+/** "add", "sub", ... and "integration", "broadphase", ... */
+const char *carom_op_name(carom_op op);
+const char *carom_phase_name(carom_phase phase);
+
 #ifdef __cplusplus
 }
 #endif

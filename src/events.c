@@ -111,12 +111,15 @@ static int cr_impact(carom_world *w, int k, float t, float t_start)
     float impulse, approach;
     carom_event *e;
 
+    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
     cr_body_sync(A, t);
     cr_body_sync(B, t);
+    CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
     if (!cr_collide(A, B, w->def.linear_slop, &m))
         return 0;
     m.a = a;
     m.b = b;
+    CR_PHASE(w, CAROM_PHASE_IMPULSES);
     impulse = cr_solver_impact(w, &m, &approach);
     if (!cr_gt(impulse, 0.0f))
         return 0;
@@ -219,13 +222,15 @@ carom_status cr_step_events(carom_world *w)
 {
     carom_status st = CAROM_OK;
     float dt = w->def.dt;
-    float t_start = cr_mul((float)w->steps, dt);
+    float t_start;
     int i, k, impacts = 0, loops = 0;
     int max_loops = 4 * w->def.max_events + 64;
     int recompute_all = w->method == CAROM_METHOD_EVENTS;
     float t_stop = dt;
 
     /* 1. drifts */
+    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
+    t_start = cr_mul((float)w->steps, dt);
     for (i = 0; i < w->body_count; ++i) {
         cr_body *b = &w->bodies[i];
         b->t_sync = 0.0f;
@@ -240,6 +245,7 @@ carom_status cr_step_events(carom_world *w)
         }
     }
     /* 2. candidate pairs from the swept boxes */
+    CR_PHASE(w, CAROM_PHASE_BROADPHASE);
     for (i = 0; i < w->body_count; ++i) {
         cr_body_swept_bounds(&w->bodies[i], 0.0f, dt, w->def.linear_slop,
                              &w->proxies[i]);
@@ -248,6 +254,7 @@ carom_status cr_step_events(carom_world *w)
     }
     cr_broadphase_pairs(w);
     /* 3. first impacts */
+    CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
     for (k = 0; k < w->pair_count; ++k)
         w->pair_toi[k] = cr_pair_next_impact(w, k, 0.0f);
 
@@ -266,6 +273,7 @@ carom_status cr_step_events(carom_world *w)
         }
         hit = cr_impact(w, k, t, t_start);
         impacts += hit;
+        CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
         if (!recompute_all) {
             /* first-impact: each pair's first impact only, found once */
             w->pair_toi[k] = CR_NO_IMPACT;
@@ -287,11 +295,14 @@ carom_status cr_step_events(carom_world *w)
             if (moved)
                 w->pair_toi[j] = cr_pair_next_impact(w, j, t);
         }
+        CR_PHASE(w, CAROM_PHASE_BROADPHASE);
         cr_regrow(w, a, t);
         cr_regrow(w, b, t);
+        CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
     }
 
     /* 5. finish the drift and the Verlet velocity update */
+    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
     for (i = 0; i < w->body_count; ++i) {
         cr_body *b = &w->bodies[i];
         cr_v2 acc1;

@@ -121,12 +121,24 @@ struct carom_world {
     long toi_queries, toi_early_outs; /* events method statistics */
     long impacts_total;
 
+    carom_profile *profile; /* attached counters, or NULL */
+
     carom_event *events; /* max_events */
     int event_count;
     int events_dropped;
 };
 
 /* ---- module entry points ------------------------------------------------ */
+
+/* profile.c: count what follows into the row of this phase */
+#if CAROM_ENABLE_PROFILE
+void cr_prof_phase(const carom_world *w, int phase);
+#define CR_PHASE(w, phase) cr_prof_phase((w), (phase))
+#define CR_PHASE_OFF() (carom__op_row = 0)
+#else
+#define CR_PHASE(w, phase) ((void)0)
+#define CR_PHASE_OFF() ((void)0)
+#endif
 
 /* shape.c */
 carom_status cr_body_build(const carom_body_def *def, cr_body *out);

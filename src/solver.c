@@ -355,14 +355,16 @@ void cr_solver_velocities(carom_world *w, int iterations)
  */
 float cr_solver_impact(carom_world *w, cr_manifold *m, float *approach)
 {
-    int it, k;
+    int it, k, iterations;
     float total = 0.0f, fastest = 0.0f;
     for (k = 0; k < m->count; ++k) {
         m->pts[k].pn = 0.0f;
         m->pts[k].pt = 0.0f;
     }
     cr_prepare_manifold(w, m, 0);
-    for (it = 0; it < CR_IMPACT_ITERATIONS; ++it)
+    /* without friction the first visit is already exact */
+    iterations = cr_gt(m->friction, 0.0f) ? CR_IMPACT_ITERATIONS : 1;
+    for (it = 0; it < iterations; ++it)
         cr_solve_manifold(w, m);
     for (k = 0; k < m->count; ++k) {
         total = cr_add(total, m->pts[k].pn);

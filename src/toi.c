@@ -190,9 +190,13 @@ static float cr_poly4(const float c[5], float s)
 
 /*
  * Earliest root of the quartic c0 + c1 s + ... + c4 s^4 in [0, hi], c0 > 0.
- * Intervals [a, b] are discarded when f(a) - L (b - a) > 0, L bounding
- * |f'| on [0, b]; the leftmost interval where f(b) <= 0 that is small
- * enough is bisected. Terminates after CR_QUARTIC_MAX_EVALS tests.
+ * Intervals [a, b] are discarded when f(a) - L (b - a) > 0, where L bounds
+ * |f'| on [a, b]: |f'(m)| at the midpoint plus (b - a) / 2 times a bound of
+ * |f''| there, which is tight near a simple root, so the search homes in
+ * on it in a few dozen tests. The leftmost small interval with f(b) <= 0
+ * is bisected. After CR_QUARTIC_MAX_EVALS tests it stops and reports the
+ * last instant known to be before any root (conservative, like
+ * advancement): the event loop then finds the bodies apart and searches on.
  */
 int cr_first_root4(const float c[5], float hi, float *out)
 {
@@ -200,24 +204,28 @@ int cr_first_root4(const float c[5], float hi, float *out)
     int top = 0, it, k;
     float a = 0.0f, b = hi, fa = c[0];
     float small = cr_mul(CR_QUARTIC_BRACKET, hi);
-    float a1 = cr_abs(c[1]), a2 = cr_mul(2.0f, cr_abs(c[2]));
-    float a3 = cr_mul(3.0f, cr_abs(c[3])), a4 = cr_mul(4.0f, cr_abs(c[4]));
+    float d2 = cr_mul(2.0f, cr_abs(c[2])), d3 = cr_mul(6.0f, cr_abs(c[3]));
+    float d4 = cr_mul(12.0f, cr_abs(c[4]));
     if (!cr_gt(c[0], 0.0f))
         return 0;
     for (it = 0; it < CR_QUARTIC_MAX_EVALS; ++it) {
         float fb = cr_poly4(c, b);
-        float lip = cr_add(a1, cr_mul(b, cr_add(a2, cr_mul(b, cr_add(a3,
-                                                      cr_mul(b, a4))))));
+        float m = cr_mul(0.5f, cr_add(a, b)), half = cr_mul(0.5f, cr_sub(b, a));
+        /* f'(m) = c1 + 2 c2 m + 3 c3 m^2 + 4 c4 m^3 */
+        float dm = cr_add(c[1], cr_mul(m, cr_add(cr_mul(2.0f, c[2]),
+                       cr_mul(m, cr_add(cr_mul(3.0f, c[3]), cr_mul(m, cr_mul(4.0f, c[4])))))));
+        float f2 = cr_add(d2, cr_mul(b, cr_add(d3, cr_mul(b, d4))));
+        float lip = cr_add(cr_abs(dm), cr_mul(half, f2));
         if (cr_le(fb, 0.0f) && (cr_le(cr_sub(b, a), small) ||
                                 top == CR_QUARTIC_STACK)) {
             for (k = 0; k < CR_BISECTIONS; ++k) {
-                float m = cr_mul(0.5f, cr_add(a, b));
-                if (cr_le(m, a) || cr_ge(m, b))
+                float mid = cr_mul(0.5f, cr_add(a, b));
+                if (cr_le(mid, a) || cr_ge(mid, b))
                     break;
-                if (cr_gt(cr_poly4(c, m), 0.0f))
-                    a = m;
+                if (cr_gt(cr_poly4(c, mid), 0.0f))
+                    a = mid;
                 else
-                    b = m;
+                    b = mid;
             }
             *out = a; /* last time known not to touch */
             return 1;
@@ -233,9 +241,10 @@ int cr_first_root4(const float c[5], float hi, float *out)
             continue;
         }
         stack[top++] = b;
-        b = cr_mul(0.5f, cr_add(a, b));
+        b = m;
     }
-    return 0;
+    *out = a; /* out of budget: nothing before a, maybe something after */
+    return 1;
 }
 
 /* ---- shape pairs ------------------------------------------------------------------ */

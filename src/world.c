@@ -172,6 +172,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->manifold_count = 0;
     w->prev_manifold_count = 0;
     w->needs_prime = 1;
+    w->profile = 0;
     w->events = (carom_event *)(void *)(base + l.events);
     w->event_count = 0;
     w->events_dropped = 0;
@@ -398,13 +399,18 @@ static void cr_prime(carom_world *w)
 static carom_status cr_resolve_contacts(carom_world *w, float t,
                                         int defer_impacts)
 {
+    CR_PHASE(w, CAROM_PHASE_BROADPHASE);
     cr_broadphase(w, w->def.linear_slop);
+    CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
     cr_find_contacts(w);
     if (defer_impacts)
         cr_defer_impacts(w);
+    /* with impacts deferred (events methods) what is left is resting */
+    CR_PHASE(w, defer_impacts ? CAROM_PHASE_RESTING : CAROM_PHASE_IMPULSES);
     cr_solver_prepare(w, 0);
     cr_solver_velocities(w, w->def.velocity_iterations);
     cr_record_impacts(w, t);
+    CR_PHASE(w, CAROM_PHASE_RESTING);
     cr_solver_positions(w);
     cr_solver_store(w);
     return w->pairs_dropped > 0 ? CAROM_ERR_PAIR_CAPACITY : CAROM_OK;
@@ -420,7 +426,9 @@ static carom_status cr_resolve_contacts(carom_world *w, float t,
 static carom_status cr_step_discrete(carom_world *w)
 {
     carom_status st = CAROM_OK, st2;
-    float t1 = cr_mul((float)(w->steps + 1), w->def.dt);
+    float t1;
+    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
+    t1 = cr_mul((float)(w->steps + 1), w->def.dt);
     if (!cr_integrate(w, w->def.dt))
         st = CAROM_ERR_NOT_FINITE;
     st2 = cr_resolve_contacts(w, t1, 0);
@@ -432,9 +440,9 @@ static carom_status cr_step_discrete(carom_world *w)
  * then resting contacts as in the discrete method (impacts deferred). */
 static carom_status cr_step_in_time_order(carom_world *w)
 {
-    float t1 = cr_mul((float)(w->steps + 1), w->def.dt);
     carom_status st = cr_step_events(w);
     int dropped = w->pairs_dropped;
+    float t1 = cr_mul((float)(w->steps + 1), w->def.dt);
     carom_status st2 = cr_resolve_contacts(w, t1, 1);
     if (st == CAROM_OK && dropped > 0)
         st = CAROM_ERR_PAIR_CAPACITY;
@@ -449,8 +457,10 @@ carom_status carom_world_step(carom_world *w)
         return CAROM_ERR_NULL;
     w->event_count = 0;
     w->events_dropped = 0;
-    if (w->needs_prime)
+    if (w->needs_prime) {
+        CR_PHASE(w, CAROM_PHASE_RESTING); /* resting forces of the start */
         cr_prime(w);
+    }
     switch (w->method) {
     case CAROM_METHOD_DISCRETE:
         st = cr_step_discrete(w);
@@ -464,8 +474,16 @@ carom_status carom_world_step(carom_world *w)
     default:
         return CAROM_ERR_BAD_METHOD;
     }
+    CR_PHASE_OFF();
     ++w->steps;
     w->impacts_total += w->event_count;
+#if CAROM_ENABLE_PROFILE
+    if (w->profile) {
+        w->profile->steps += 1u;
+        w->profile->body_steps += (uint64_t)w->body_count;
+        w->profile->impacts += (uint64_t)w->event_count;
+    }
+#endif
     if (st == CAROM_OK && w->events_dropped > 0)
         st = CAROM_ERR_EVENT_CAPACITY;
     return st;

@@ -13,8 +13,10 @@ int main(void)
     srunner_add_suite(sr, suite_broadphase());
     srunner_add_suite(sr, suite_narrowphase());
     srunner_add_suite(sr, suite_solver());
+    srunner_add_suite(sr, suite_toi());
     srunner_add_suite(sr, suite_events());
     srunner_add_suite(sr, suite_world());
+    srunner_add_suite(sr, suite_profile());
     srunner_add_suite(sr, suite_scene());
     srunner_run_all(sr, CK_NORMAL);
     failed = srunner_ntests_failed(sr);

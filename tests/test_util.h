@@ -82,5 +82,6 @@ Suite *suite_world(void);
 Suite *suite_scene(void);
 Suite *suite_events(void);
 Suite *suite_toi(void);
+Suite *suite_profile(void);
 
 #endif

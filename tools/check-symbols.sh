@@ -1,7 +1,9 @@
 #!/bin/sh
-# check-symbols.sh LIB.a -- the core library may reference no allocator and
-# no libm function but sqrtf. Takes the symbols the archive's members need
-# but no member defines, and fails on anything outside the allow-list.
+# check-symbols.sh LIB.a [PROFILE_LIB.a] -- the core library may reference
+# no allocator and no libm function but sqrtf: takes the symbols the
+# archive's members need but no member defines, and fails on anything
+# outside the allow-list. The default build must contain no op counter
+# (profiling compiled out costs nothing); the profiling build must.
 set -eu
 lib="$1"
 [ -f "$lib" ] || { echo "check-symbols: no such archive: $lib" >&2; exit 2; }
@@ -24,3 +26,19 @@ if [ -n "$bad" ]; then
     exit 1
 fi
 echo "check-symbols: ok: $lib needs only: $(echo $undef)"
+if nm "$lib" | grep -q 'carom__op_row'; then
+    echo "check-symbols: FAIL: $lib contains the op counter (carom__op_row): the default build must not count" >&2
+    exit 1
+fi
+echo "check-symbols: ok: $lib has no op counter (counting compiled out)"
+if [ $# -ge 2 ]; then
+    if ! nm -g --defined-only "$2" | grep -q ' carom__op_row$'; then
+        echo "check-symbols: FAIL: $2 lacks the op counter: profiling is not compiled in" >&2
+        exit 1
+    fi
+    if nm -u "$2" | grep -qE ' (malloc|calloc|realloc|free)$'; then
+        echo "check-symbols: FAIL: $2 calls the allocator" >&2
+        exit 1
+    fi
+    echo "check-symbols: ok: $2 defines the op counter and does not allocate"
+fi

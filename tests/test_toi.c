@@ -1,0 +1,734 @@
+/*
+ * test_toi.c -- time of impact (src/toi.c): the quadratic and quartic root
+ * finders, and the first impact of body pairs under the step's drift.
+ *
+ * Expected times are worked out independently in double precision: closed
+ * forms (the cancellation-free quadratic formula, kinematics), or a dense
+ * scan of the double-precision function followed by bisection.
+ */
+#include <string.h>
+
+#include "test_util.h"
+
+#include "internal.h"
+
+Suite *suite_toi(void);
+
+/* ---- helpers ------------------------------------------------------------- */
+
+/* Events fields the time of impact reads: synchronised at 0, given drift. */
+static void set_motion(cr_body *b, double vx, double vy, double w, double ax,
+                       double ay)
+{
+    b->t_sync = 0.0f;
+    b->vel.x = (float)vx;
+    b->vel.y = (float)vy;
+    b->w = (float)w;
+    b->acc_d.x = (float)ax;
+    b->acc_d.y = (float)ay;
+    b->alpha_d = 0.0f;
+}
+
+static cr_body make_circle(double x, double y, double r, int type)
+{
+    carom_body_def bd = carom_default_body_def();
+    cr_body b;
+    bd.type = (carom_body_type)type;
+    bd.radius = (float)r;
+    bd.position.x = (float)x;
+    bd.position.y = (float)y;
+    ck_assert_int_eq(cr_body_build(&bd, &b), CAROM_OK);
+    set_motion(&b, 0, 0, 0, 0, 0);
+    return b;
+}
+
+static cr_body make_box(double x, double y, double hx, double hy,
+                        double angle, int type)
+{
+    carom_body_def bd = carom_default_body_def();
+    cr_body b;
+    bd.type = (carom_body_type)type;
+    carom_body_def_set_box(&bd, (float)hx, (float)hy);
+    bd.position.x = (float)x;
+    bd.position.y = (float)y;
+    bd.rotation = carom_rot_from_angle((float)angle);
+    ck_assert_int_eq(cr_body_build(&bd, &b), CAROM_OK);
+    set_motion(&b, 0, 0, 0, 0, 0);
+    return b;
+}
+
+/* Earliest root of c0 + c1 s + c2 s^2 where it decreases, in double, by
+ * the textbook formula for an upward parabola or a line. -1 if none. */
+static double down_root2_d(double c0, double c1, double c2, double hi)
+{
+    double disc, sq, r;
+    if (c2 == 0.0) {
+        r = c1 < 0.0 ? -c0 / c1 : -1.0;
+    } else {
+        disc = c1 * c1 - 4.0 * c2 * c0;
+        if (disc < 0.0)
+            return -1.0;
+        sq = sqrt(disc);
+        /* the root with derivative c1 + 2 c2 s = -sgn(c2) sq < 0 */
+        r = c2 > 0.0 ? 2.0 * c0 / (-c1 + sq) : (-c1 - sq) / (2.0 * c2);
+        if (c2 > 0.0 && r < 0.0)
+            return -1.0;
+    }
+    return r >= 0.0 && r <= hi ? r : -1.0;
+}
+
+static double poly4_d(const float c[5], double s)
+{
+    return (double)c[0] +
+           s * ((double)c[1] +
+                s * ((double)c[2] + s * ((double)c[3] + s * (double)c[4])));
+}
+
+/* First root of the quartic (float coefficients, evaluated in double) in
+ * [0, hi]: dense scan, then bisection. -1 if the scan finds none. */
+static double first_root4_scan(const float c[5], double hi)
+{
+    const int n = 200000;
+    double prev = 0.0;
+    int i, k;
+    for (i = 1; i <= n; ++i) {
+        double s = hi * (double)i / (double)n;
+        if (poly4_d(c, s) <= 0.0) {
+            double a = prev, b = s;
+            for (k = 0; k < 200; ++k) {
+                double m = 0.5 * (a + b);
+                if (poly4_d(c, m) > 0.0)
+                    a = m;
+                else
+                    b = m;
+            }
+            return a;
+        }
+        prev = s;
+    }
+    return -1.0;
+}
+
+/* Quartic |p + u s + q s^2|^2 - R^2, coefficients in double then rounded. */
+static void circle_quartic(double px, double py, double ux, double uy,
+                           double qx, double qy, double R, float c[5])
+{
+    c[0] = (float)(px * px + py * py - R * R);
+    c[1] = (float)(2.0 * (px * ux + py * uy));
+    c[2] = (float)(ux * ux + uy * uy + 2.0 * (px * qx + py * qy));
+    c[3] = (float)(2.0 * (ux * qx + uy * qy));
+    c[4] = (float)(qx * qx + qy * qy);
+}
+
+/* The drift of a body, in double: centre at time t (t_sync = 0). */
+static void centre_d(const cr_body *b, double t, double *x, double *y)
+{
+    *x = (double)b->x.x + (double)b->vel.x * t + 0.5 * (double)b->acc_d.x * t * t;
+    *y = (double)b->x.y + (double)b->vel.y * t + 0.5 * (double)b->acc_d.y * t * t;
+}
+
+static double circles_gap_d(const cr_body *a, const cr_body *b, double t)
+{
+    double ax, ay, bx, by;
+    centre_d(a, t, &ax, &ay);
+    centre_d(b, t, &bx, &by);
+    return hypot(bx - ax, by - ay) - ((double)a->radius + (double)b->radius);
+}
+
+/* World vertices of a polygon at time t in double, turning at constant w. */
+static void polygon_d(const cr_body *b, double t, double vx[], double vy[])
+{
+    double cx, cy, ang = atan2((double)b->q.s, (double)b->q.c) + (double)b->w * t;
+    double co = cos(ang), si = sin(ang);
+    int i;
+    centre_d(b, t, &cx, &cy);
+    for (i = 0; i < b->count; ++i) {
+        double lx = b->verts[i].x, ly = b->verts[i].y;
+        vx[i] = cx + co * lx - si * ly;
+        vy[i] = cy + si * lx + co * ly;
+    }
+}
+
+/* Largest separation along an edge normal of P of the vertices of Q. */
+static double sat_one_d(int np, const double px[], const double py[], int nq,
+                        const double qx[], const double qy[])
+{
+    double best = -1e300;
+    int i, j;
+    for (i = 0; i < np; ++i) {
+        int k = (i + 1) % np;
+        double ex = px[k] - px[i], ey = py[k] - py[i], len = hypot(ex, ey);
+        double nx = ey / len, ny = -ex / len, lo = 1e300; /* ccw: outward */
+        for (j = 0; j < nq; ++j) {
+            double d = nx * (qx[j] - px[i]) + ny * (qy[j] - py[i]);
+            lo = d < lo ? d : lo;
+        }
+        best = lo > best ? lo : best;
+    }
+    return best;
+}
+
+/* Separating-axis separation of two polygons at time t (> 0: apart). */
+static double polygons_sat_d(const cr_body *a, const cr_body *b, double t)
+{
+    double ax[CAROM_MAX_POLYGON_VERTICES], ay[CAROM_MAX_POLYGON_VERTICES];
+    double bx[CAROM_MAX_POLYGON_VERTICES], by[CAROM_MAX_POLYGON_VERTICES];
+    double s1, s2;
+    polygon_d(a, t, ax, ay);
+    polygon_d(b, t, bx, by);
+    s1 = sat_one_d(a->count, ax, ay, b->count, bx, by);
+    s2 = sat_one_d(b->count, bx, by, a->count, ax, ay);
+    return s1 > s2 ? s1 : s2;
+}
+
+/* A posed copy of a body at time t, for cr_separation. */
+static cr_body posed(const cr_body *b, float t)
+{
+    cr_body c = *b;
+    cr_body_pose(b, t, &c.x, &c.q);
+    return c;
+}
+
+/* Deterministic pseudo-random numbers in [lo, hi). */
+static double lcg(unsigned long *state, double lo, double hi)
+{
+    *state = (*state * 1103515245ul + 12345ul) & 0x7fffffffu;
+    return lo + (hi - lo) * ((double)*state / 2147483648.0);
+}
+
+/* ---- cr_first_down_root2 ------------------------------------------------------ */
+
+START_TEST(test_root2_linear_gap_closes_at_c0_over_minus_c1)
+{
+    float s = -1.0f;
+    ck_assert_int_eq(cr_first_down_root2(2.0f, -4.0f, 0.0f, 1.0f, &s), 1);
+    ck_assert_close(s, 0.5, 1e-7);
+    ck_assert_int_eq(cr_first_down_root2(0.3f, -0.7f, 0.0f, 1.0f, &s), 1);
+    ck_assert_close(s, (double)0.3f / (double)0.7f, 1e-6);
+    /* the end of the range is included */
+    ck_assert_int_eq(cr_first_down_root2(2.0f, -4.0f, 0.0f, 0.5f, &s), 1);
+    ck_assert_close(s, 0.5, 1e-7);
+}
+END_TEST
+
+START_TEST(test_root2_linear_opening_or_still_gap_has_no_root)
+{
+    float s = -1.0f;
+    ck_assert_int_eq(cr_first_down_root2(1.0f, 2.0f, 0.0f, 10.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(1.0f, 0.0f, 0.0f, 10.0f, &s), 0);
+    /* closing, but not within the range */
+    ck_assert_int_eq(cr_first_down_root2(2.0f, -4.0f, 0.0f, 0.4f, &s), 0);
+}
+END_TEST
+
+START_TEST(test_root2_quadratic_reports_the_earlier_root)
+{
+    /* 2 (s - 0.25)(s - 0.75): down at 0.25, up at 0.75 */
+    float s = -1.0f;
+    double e = down_root2_d(0.375, -2.0, 2.0, 1.0);
+    ck_assert_close(e, 0.25, 1e-12);
+    ck_assert_int_eq(cr_first_down_root2(0.375f, -2.0f, 2.0f, 1.0f, &s), 1);
+    ck_assert_close(s, e, 1e-6);
+    /* a generic one: gap 0.6 closing at 1.9, accelerating at 2 x 1.3 */
+    e = down_root2_d((double)0.6f, (double)-1.9f, (double)1.3f, 1.0);
+    ck_assert(e > 0.0);
+    ck_assert_int_eq(cr_first_down_root2(0.6f, -1.9f, 1.3f, 1.0f, &s), 1);
+    ck_assert_close(s, e, 1e-6);
+}
+END_TEST
+
+START_TEST(test_root2_tiny_leading_coefficient_keeps_the_root_near_one)
+{
+    /* 1 - s + 1e-12 s^2: roots ~1 and ~1e12; the naive formula
+     * (-c1 - sqrt(disc)) / (2 c2) loses the small one to cancellation */
+    float s = -1.0f;
+    double c2 = (double)1e-12f;
+    double e = 2.0 / (1.0 + sqrt(1.0 - 4.0 * c2)); /* stable form */
+    ck_assert_int_eq(cr_first_down_root2(1.0f, -1.0f, 1e-12f, 10.0f, &s), 1);
+    ck_assert_msg(fabs((double)s - e) <= 1e-6 * e, "s = %.9g, expected %.12g",
+                  (double)s, e);
+}
+END_TEST
+
+START_TEST(test_root2_tiny_discriminant_gives_the_earlier_of_two_close_roots)
+{
+    /* (s - 0.5)^2 - 2^-26: roots 0.5 -+ 2^-13, every coefficient and the
+     * discriminant 2^-24 exact in float */
+    float s = -1.0f;
+    double d = ldexp(1.0, -26);
+    double e = 0.5 - sqrt(d);
+    ck_assert_int_eq(cr_first_down_root2((float)(0.25 - d), -1.0f, 1.0f, 1.0f, &s), 1);
+    ck_assert_msg(fabs((double)s - e) <= 1e-6 * e, "s = %.9g, expected %.12g",
+                  (double)s, e);
+    ck_assert(s < 0.5f);
+    /* the same, scaled: 1024 ((s - 0.5)^2 - 2^-26), still exact; the
+     * discriminant 2^-4 is 2^-24 of c1^2 */
+    ck_assert_int_eq(cr_first_down_root2((float)(1024.0 * (0.25 - d)), -1024.0f,
+                                         1024.0f, 1.0f, &s), 1);
+    ck_assert_msg(fabs((double)s - e) <= 1e-6 * e, "scaled: s = %.9g, expected %.12g",
+                  (double)s, e);
+}
+END_TEST
+
+START_TEST(test_root2_double_root_is_a_graze_not_an_impact)
+{
+    /* (s - 0.5)^2: touches at 0.5 without decreasing through zero */
+    float s = -1.0f;
+    ck_assert_int_eq(cr_first_down_root2(0.25f, -1.0f, 1.0f, 1.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(2.5f, -10.0f, 10.0f, 1.0f, &s), 0);
+    /* closest approach still apart: no real root */
+    ck_assert_int_eq(cr_first_down_root2(0.2501f, -1.0f, 1.0f, 1.0f, &s), 0);
+}
+END_TEST
+
+START_TEST(test_root2_separating_motion_has_no_root)
+{
+    float s = -1.0f;
+    ck_assert_int_eq(cr_first_down_root2(1.0f, 0.5f, 0.0f, 100.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(1.0f, 0.5f, 2.0f, 100.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(0.001f, 3.0f, 0.0f, 100.0f, &s), 0);
+}
+END_TEST
+
+START_TEST(test_root2_returning_body_skips_the_up_crossing)
+{
+    /* gap 0.001 + 3 s - 5 s^2: opening first, then falling back through
+     * zero; the up-crossing root (negative) must not be reported */
+    float s = -1.0f;
+    double c0 = (double)0.001f;
+    double e = down_root2_d(c0, 3.0, -5.0, 10.0);
+    ck_assert_close(e, (3.0 + sqrt(9.0 + 20.0 * c0)) / 10.0, 1e-12);
+    ck_assert(e > 0.6);
+    ck_assert_int_eq(cr_first_down_root2(0.001f, 3.0f, -5.0f, 10.0f, &s), 1);
+    ck_assert_msg(fabs((double)s - e) <= 1e-6 * e, "s = %.9g, expected %.12g",
+                  (double)s, e);
+    /* and none before it falls back */
+    ck_assert_int_eq(cr_first_down_root2(0.001f, 3.0f, -5.0f, 0.6f, &s), 0);
+}
+END_TEST
+
+START_TEST(test_root2_root_beyond_hi_is_none)
+{
+    /* 1 - s + 0.1 s^2: down root (1 - sqrt(0.6)) / 0.2 ~ 1.127 */
+    float s = -1.0f;
+    double c2 = (double)0.1f;
+    double e = down_root2_d(1.0, -1.0, c2, 10.0);
+    ck_assert_close(e, (1.0 - sqrt(1.0 - 4.0 * c2)) / (2.0 * c2), 1e-12);
+    ck_assert_int_eq(cr_first_down_root2(1.0f, -1.0f, 0.1f, 1.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(1.0f, -1.0f, 0.1f, 2.0f, &s), 1);
+    ck_assert_close(s, e, 1e-6);
+}
+END_TEST
+
+START_TEST(test_root2_negative_roots_are_never_reported)
+{
+    /* (s + 1)(s + 0.5): decreasing through zero at s = -1, in the past */
+    float s = -1.0f;
+    ck_assert_int_eq(cr_first_down_root2(0.5f, 1.5f, 1.0f, 10.0f, &s), 0);
+    /* 2 + s - s^2 = -(s + 1)(s - 2): roots straddle 0, only 2 is reported */
+    ck_assert_int_eq(cr_first_down_root2(2.0f, 1.0f, -1.0f, 10.0f, &s), 1);
+    ck_assert_close(s, 2.0, 1e-6);
+}
+END_TEST
+
+START_TEST(test_root2_requires_a_positive_gap)
+{
+    float s = -1.0f;
+    ck_assert_int_eq(cr_first_down_root2(0.0f, -1.0f, 0.0f, 10.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(-1.0f, -1.0f, 1.0f, 10.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(-0.0f, -1.0f, -1.0f, 10.0f, &s), 0);
+}
+END_TEST
+
+/* ---- cr_first_root4 ------------------------------------------------------------- */
+
+/* Common check: found, no later than the true root, and within rel. */
+static void assert_root4(const float c[5], float hi, double rel)
+{
+    float s = -1.0f;
+    double e = first_root4_scan(c, hi);
+    ck_assert_msg(e >= 0.0, "the scan finds no root");
+    ck_assert_msg(cr_first_root4(c, hi, &s) == 1,
+                  "no root reported; expected %.9g (c = %g %g %g %g %g, hi %g)",
+                  e, (double)c[0], (double)c[1], (double)c[2], (double)c[3],
+                  (double)c[4], (double)hi);
+    ck_assert_msg(fabs((double)s - e) <= rel * (e > 1.0 ? e : 1.0),
+                  "s = %.9g, expected %.9g", (double)s, e);
+    /* the last time known before contact: not after the root */
+    ck_assert_msg((double)s <= e + 1e-6 * e, "s = %.9g after the root %.9g",
+                  (double)s, e);
+}
+
+START_TEST(test_root4_circles_with_different_accelerations_first_contact)
+{
+    /* d(s) = (3, 0.5) + (-4, 0.25) s + (0.5, -1) s^2, R = 1: every
+     * coefficient is exact in float */
+    float c[5];
+    circle_quartic(3, 0.5, -4, 0.25, 0.5, -1, 1, c);
+    ck_assert_close(c[0], 8.25, 0);
+    ck_assert_close(c[4], 1.25, 0);
+    assert_root4(c, 1.0f, 1e-5);
+}
+END_TEST
+
+START_TEST(test_root4_two_roots_in_range_returns_the_first)
+{
+    /* (s - 0.3)(s - 0.7)(s - 1.2)(s - 1.6) */
+    double r[4] = {0.3, 0.7, 1.2, 1.6};
+    double e2 = r[0] * r[1] + r[0] * r[2] + r[0] * r[3] + r[1] * r[2] +
+                r[1] * r[3] + r[2] * r[3];
+    double e3 = r[0] * r[1] * r[2] + r[0] * r[1] * r[3] + r[0] * r[2] * r[3] +
+                r[1] * r[2] * r[3];
+    float c[5];
+    c[0] = (float)(r[0] * r[1] * r[2] * r[3]);
+    c[1] = (float)(-e3);
+    c[2] = (float)e2;
+    c[3] = (float)(-(r[0] + r[1] + r[2] + r[3]));
+    c[4] = 1.0f;
+    ck_assert_close(first_root4_scan(c, 2.0), 0.3, 1e-5);
+    assert_root4(c, 2.0f, 1e-5);
+    /* a circle passing right through the other: enters, then leaves */
+    circle_quartic(3, 0, -4, 0, 0.5, 0.25, 1, c);
+    assert_root4(c, 2.0f, 1e-5);
+}
+END_TEST
+
+START_TEST(test_root4_grazing_near_miss_has_no_root)
+{
+    /* the centre passes at height 1.001 over a circle of radius 1:
+     * |d|^2 - 1 >= 0.002001 all along */
+    float c[5], s = -1.0f;
+    circle_quartic(3, 1.001, -4, 0, 0.5, 0, 1, c);
+    ck_assert(first_root4_scan(c, 2.0) < 0.0);
+    ck_assert_int_eq(cr_first_root4(c, 2.0f, &s), 0);
+}
+END_TEST
+
+START_TEST(test_root4_brief_dip_between_close_roots_is_found)
+{
+    /* ((s - 0.4)^2 - 1e-6)(1 + s^2): below zero only on 0.4 -+ 0.001 */
+    double m = 0.4, w2 = 1e-6, a0 = m * m - w2;
+    float c[5];
+    c[0] = (float)a0;
+    c[1] = (float)(-2.0 * m);
+    c[2] = (float)(1.0 + a0);
+    c[3] = (float)(-2.0 * m);
+    c[4] = 1.0f;
+    ck_assert_close(first_root4_scan(c, 1.0), 0.399, 1e-5);
+    assert_root4(c, 1.0f, 1e-5);
+}
+END_TEST
+
+START_TEST(test_root4_sign_change_over_the_range_is_a_root)
+{
+    /* f(s) = 8 - 18 s + 25 s^2 - 32 s^3 + 16 s^4, f(0) = 8, f(1) = -1:
+     * a root in (0, 1) by continuity. It is |d|^2 - 1 for d(s) =
+     * (-3 + 3 s, 4 s - 4 s^2), a ball thrown at another one under gravity */
+    float c[5] = {8.0f, -18.0f, 25.0f, -32.0f, 16.0f};
+    float d[5];
+    circle_quartic(-3, 0, 3, 4, 0, -4, 1, d);
+    ck_assert(memcmp(c, d, sizeof c) == 0);
+    ck_assert(poly4_d(c, 1.0) < 0.0);
+    assert_root4(c, 1.0f, 1e-5);
+}
+END_TEST
+
+START_TEST(test_root4_requires_a_positive_constant_term)
+{
+    float c[5] = {0.0f, -1.0f, 0.0f, 0.0f, 1.0f}, s = -1.0f;
+    ck_assert_int_eq(cr_first_root4(c, 1.0f, &s), 0);
+    c[0] = -0.5f;
+    ck_assert_int_eq(cr_first_root4(c, 1.0f, &s), 0);
+}
+END_TEST
+
+START_TEST(test_root4_always_terminates_inside_the_range_before_the_root)
+{
+    /* many circle pairs: whatever is reported lies in [0, hi] and not after
+     * the first root of the scan */
+    unsigned long st = 2024;
+    int i, reported = 0;
+    for (i = 0; i < 300; ++i) {
+        double px = lcg(&st, -4, 4), py = lcg(&st, -4, 4);
+        double ux = lcg(&st, -6, 6), uy = lcg(&st, -6, 6);
+        double qx = lcg(&st, -8, 8), qy = lcg(&st, -8, 8);
+        double R = lcg(&st, 0.2, 1.5), hi = lcg(&st, 0.01, 2.0);
+        float c[5], s = -1.0f;
+        if (px * px + py * py <= 1.01 * R * R)
+            continue;
+        circle_quartic(px, py, ux, uy, qx, qy, R, c);
+        if (!(c[0] > 0.0f))
+            continue;
+        if (cr_first_root4(c, (float)hi, &s)) {
+            double e = first_root4_scan(c, (float)hi);
+            ++reported;
+            ck_assert_msg(s >= 0.0f && s <= (float)hi, "case %d: s = %g outside [0, %g]",
+                          i, (double)s, hi);
+            ck_assert_msg(e >= 0.0, "case %d: s = %g reported, the scan finds no root",
+                          i, (double)s);
+            ck_assert_msg((double)s <= e + 1e-6 * (e > 1.0 ? e : 1.0),
+                          "case %d: s = %.9g after the root %.9g", i, (double)s, e);
+        }
+    }
+    ck_assert_int_gt(reported, 10);
+}
+END_TEST
+
+/* ---- cr_time_of_impact -------------------------------------------------------- */
+
+START_TEST(test_toi_circles_head_on_gap_over_closing_speed)
+{
+    /* gap 3 - 0.5 - 0.25 = 2.25, closing at 2 + 1 = 3 */
+    cr_body a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
+    cr_body b = make_circle(3, 0, 0.25, CAROM_BODY_DYNAMIC);
+    float toi = -1.0f;
+    set_motion(&a, 2, 0, 0, 0, 0);
+    set_motion(&b, -1, 0, 0, 0, 0);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, 2.25 / 3.0, 1e-6);
+    ck_assert_int_eq(cr_time_of_impact(&b, &a, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, 2.25 / 3.0, 1e-6);
+    /* not within [0, 0.7] */
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 0.7f, 1e-4f, &toi), 0);
+}
+END_TEST
+
+START_TEST(test_toi_is_a_step_time_when_searching_from_a_later_t0)
+{
+    /* same head-on pair, searched from t0 = 0.25: still 0.75, not 0.5 */
+    cr_body a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
+    cr_body b = make_circle(3, 0, 0.25, CAROM_BODY_DYNAMIC);
+    float toi = -1.0f;
+    set_motion(&a, 2, 0, 0, 0, 0);
+    set_motion(&b, -1, 0, 0, 0, 0);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.25f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, 0.75, 1e-6);
+    /* an empty search interval finds nothing */
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 1.0f, 1.0f, 1e-4f, &toi), 0);
+}
+END_TEST
+
+START_TEST(test_toi_falling_circle_meets_box_top_face)
+{
+    /* top face at y = 0.5; centre at 2, r = 0.25, falling at 1 under g = 10:
+     * 1.25 = t + 5 t^2 */
+    cr_body box = make_box(0, 0, 2, 0.5, 0, CAROM_BODY_STATIC);
+    cr_body ball = make_circle(0.3, 2, 0.25, CAROM_BODY_DYNAMIC);
+    double h = 2.0 - 0.5 - 0.25, e = (-1.0 + sqrt(1.0 + 20.0 * h)) / 10.0;
+    float toi = -1.0f;
+    set_motion(&ball, 0, -1, 0, 0, -10);
+    ck_assert_int_eq(cr_time_of_impact(&box, &ball, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-6);
+    ck_assert_int_eq(cr_time_of_impact(&ball, &box, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-6);
+}
+END_TEST
+
+START_TEST(test_toi_circle_meets_box_corner_at_radius_distance)
+{
+    /* centre (3, 1.8) moving at (-2, -0.5), r = 0.5, corner (1, 1):
+     * |(2 - 2t, 0.8 - 0.5t)| = 0.5, i.e. 4.25 t^2 - 8.8 t + 4.39 = 0. It
+     * passes the top face's line (t = 0.6, x = 1.8) and the right face's
+     * (t = 0.75, y = 1.425) beyond the ends of those edges. */
+    cr_body box = make_box(0, 0, 1, 1, 0, CAROM_BODY_STATIC);
+    cr_body ball = make_circle(3, 1.8, 0.5, CAROM_BODY_DYNAMIC);
+    double A = 4.25, B = -8.8, C = 4.39;
+    double e = 2.0 * C / (-B + sqrt(B * B - 4.0 * A * C));
+    double cx = 3.0 - 2.0 * e, cy = 1.8 - 0.5 * e;
+    float toi = -1.0f;
+    ck_assert(cx > 1.0 && cy > 1.0); /* vertex region */
+    ck_assert_close(hypot(cx - 1.0, cy - 1.0), 0.5, 1e-12);
+    set_motion(&ball, -2, -0.5, 0, 0, 0);
+    ck_assert_int_eq(cr_time_of_impact(&box, &ball, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-5);
+    ck_assert_int_eq(cr_time_of_impact(&ball, &box, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-5);
+}
+END_TEST
+
+START_TEST(test_toi_falling_box_meets_box_face_with_a_vertex)
+{
+    /* bottom at 2 - 0.5 = 1.5 over a top face at 0.5: 1 = t + 5 t^2 */
+    cr_body ground = make_box(0, 0, 2, 0.5, 0, CAROM_BODY_STATIC);
+    cr_body top = make_box(0.3, 2, 0.5, 0.5, 0, CAROM_BODY_DYNAMIC);
+    double e = (-1.0 + sqrt(21.0)) / 10.0;
+    float toi = -1.0f;
+    set_motion(&top, 0, -1, 0, 0, -10);
+    ck_assert_int_eq(cr_time_of_impact(&ground, &top, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-6);
+    ck_assert_int_eq(cr_time_of_impact(&top, &ground, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-6);
+}
+END_TEST
+
+START_TEST(test_toi_circles_with_different_accelerations_match_scan)
+{
+    /* relative acceleration (0, -2): the quartic case */
+    cr_body a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
+    cr_body b = make_circle(3, 0.5, 0.5, CAROM_BODY_DYNAMIC);
+    double e = -1.0, lo, hi;
+    const int n = 200000;
+    int i, k;
+    float toi = -1.0f;
+    set_motion(&a, 1, 0, 0, 0, -10);
+    set_motion(&b, -2, 0.3, 0, 0, -12);
+    for (i = 1; i <= n && e < 0.0; ++i)
+        if (circles_gap_d(&a, &b, (double)i / n) <= 0.0) {
+            lo = (double)(i - 1) / n;
+            hi = (double)i / n;
+            for (k = 0; k < 100; ++k) {
+                double m = 0.5 * (lo + hi);
+                if (circles_gap_d(&a, &b, m) > 0.0)
+                    lo = m;
+                else
+                    hi = m;
+            }
+            e = lo;
+        }
+    ck_assert_msg(e > 0.0, "the scan finds no contact");
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-5);
+    ck_assert_msg(toi <= e + 1e-6, "toi %.9g after the contact %.9g", (double)toi, e);
+    ck_assert_int_eq(cr_time_of_impact(&b, &a, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-5);
+}
+END_TEST
+
+START_TEST(test_toi_projectile_onto_static_circle_is_not_missed)
+{
+    /* ball thrown from (-3, 0) at (3, 4) under g = 8 lands on the centre of
+     * a static ball at the origin at t = 1: d = (-3 + 3t, 4t - 4t^2) */
+    cr_body peg = make_circle(0, 0, 0.5, CAROM_BODY_STATIC);
+    cr_body ball = make_circle(-3, 0, 0.5, CAROM_BODY_DYNAMIC);
+    double e = -1.0, lo, hi;
+    const int n = 200000;
+    int i, k;
+    float toi = -1.0f;
+    set_motion(&ball, 3, 4, 0, 0, -8);
+    ck_assert(circles_gap_d(&peg, &ball, 1.0) < -0.9);
+    for (i = 1; i <= n && e < 0.0; ++i)
+        if (circles_gap_d(&peg, &ball, (double)i / n) <= 0.0) {
+            lo = (double)(i - 1) / n;
+            hi = (double)i / n;
+            for (k = 0; k < 100; ++k) {
+                double m = 0.5 * (lo + hi);
+                if (circles_gap_d(&peg, &ball, m) > 0.0)
+                    lo = m;
+                else
+                    hi = m;
+            }
+            e = lo;
+        }
+    ck_assert_msg(e > 0.0, "the scan finds no contact");
+    ck_assert_msg(cr_time_of_impact(&peg, &ball, 0.0f, 1.0f, 1e-4f, &toi) == 1,
+                  "impact at %.9g missed", e);
+    ck_assert_close(toi, e, 1e-5);
+}
+END_TEST
+
+START_TEST(test_toi_rotating_box_stops_within_tolerance_before_contact)
+{
+    /* box spinning at 3 rad/s sliding at 2 towards a static box:
+     * conservative advancement */
+    cr_body ground = make_box(0, 0, 1, 0.5, 0, CAROM_BODY_STATIC);
+    cr_body spin = make_box(3, 0.2, 0.5, 0.5, 0.3, CAROM_BODY_DYNAMIC);
+    const float tol = 1e-3f;
+    const int n = 100000;
+    double e = -1.0, lo, hi;
+    int i, k;
+    float toi = -1.0f, sep;
+    cr_body pa, pb;
+    set_motion(&spin, -2, 0, 3, 0, 0);
+    for (i = 1; i <= n && e < 0.0; ++i)
+        if (polygons_sat_d(&ground, &spin, (double)i / n) <= 0.0) {
+            lo = (double)(i - 1) / n;
+            hi = (double)i / n;
+            for (k = 0; k < 100; ++k) {
+                double m = 0.5 * (lo + hi);
+                if (polygons_sat_d(&ground, &spin, m) > 0.0)
+                    lo = m;
+                else
+                    hi = m;
+            }
+            e = lo;
+        }
+    ck_assert_msg(e > 0.0, "the scan finds no contact");
+    ck_assert_int_eq(cr_time_of_impact(&ground, &spin, 0.0f, 1.0f, tol, &toi), 1);
+    ck_assert_msg(toi >= 0.0f && (double)toi <= e + 1e-6,
+                  "toi %.9g not in [0, contact %.9g]", (double)toi, e);
+    pa = posed(&ground, toi);
+    pb = posed(&spin, toi);
+    sep = cr_separation(&pa, &pb);
+    ck_assert_msg(sep >= 0.0f && sep <= tol + 1e-5f,
+                  "separation %.9g at toi %.9g, tolerance %g", (double)sep,
+                  (double)toi, (double)tol);
+    /* the other order */
+    ck_assert_int_eq(cr_time_of_impact(&spin, &ground, 0.0f, 1.0f, tol, &toi), 1);
+    pa = posed(&spin, toi);
+    pb = posed(&ground, toi);
+    sep = cr_separation(&pa, &pb);
+    ck_assert_msg(sep >= 0.0f && sep <= tol + 1e-5f && (double)toi <= e + 1e-6,
+                  "reversed: separation %.9g at toi %.9g", (double)sep, (double)toi);
+}
+END_TEST
+
+START_TEST(test_toi_passing_bodies_miss)
+{
+    cr_body a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
+    cr_body b = make_circle(3, 2, 0.5, CAROM_BODY_DYNAMIC);
+    cr_body box = make_box(0, 0, 1, 1, 0, CAROM_BODY_STATIC);
+    cr_body spin = make_box(3, 3, 0.5, 0.5, 0, CAROM_BODY_DYNAMIC);
+    float toi = -1.0f;
+    /* passes 2 above, closest distance 2 > 1 */
+    set_motion(&b, -4, 0, 0, 0, 0);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 2.0f, 1e-4f, &toi), 0);
+    /* over the box's top (1) with 0.5 to spare: centre at 2, r = 0.5 */
+    ck_assert_int_eq(cr_time_of_impact(&box, &b, 0.0f, 2.0f, 1e-4f, &toi), 0);
+    /* the same, accelerating differently (the quartic): 0.25 to spare */
+    set_motion(&b, -4, 0.25, 0, 0, -0.5);
+    ck_assert(circles_gap_d(&a, &b, 0.5) > 0.5);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 2.0f, 1e-4f, &toi), 0);
+    /* a spinning box moving away */
+    set_motion(&spin, 1, 1, 4, 0, 0);
+    ck_assert_int_eq(cr_time_of_impact(&box, &spin, 0.0f, 2.0f, 1e-4f, &toi), 0);
+}
+END_TEST
+
+Suite *suite_toi(void)
+{
+    Suite *s = suite_create("toi");
+    TCase *r2 = tcase_create("root2");
+    TCase *r4 = tcase_create("root4");
+    TCase *tc = tcase_create("time_of_impact");
+    tcase_add_test(r2, test_root2_linear_gap_closes_at_c0_over_minus_c1);
+    tcase_add_test(r2, test_root2_linear_opening_or_still_gap_has_no_root);
+    tcase_add_test(r2, test_root2_quadratic_reports_the_earlier_root);
+    tcase_add_test(r2, test_root2_tiny_leading_coefficient_keeps_the_root_near_one);
+    tcase_add_test(r2, test_root2_tiny_discriminant_gives_the_earlier_of_two_close_roots);
+    tcase_add_test(r2, test_root2_double_root_is_a_graze_not_an_impact);
+    tcase_add_test(r2, test_root2_separating_motion_has_no_root);
+    tcase_add_test(r2, test_root2_returning_body_skips_the_up_crossing);
+    tcase_add_test(r2, test_root2_root_beyond_hi_is_none);
+    tcase_add_test(r2, test_root2_negative_roots_are_never_reported);
+    tcase_add_test(r2, test_root2_requires_a_positive_gap);
+    suite_add_tcase(s, r2);
+    tcase_add_test(r4, test_root4_circles_with_different_accelerations_first_contact);
+    tcase_add_test(r4, test_root4_two_roots_in_range_returns_the_first);
+    tcase_add_test(r4, test_root4_grazing_near_miss_has_no_root);
+    tcase_add_test(r4, test_root4_brief_dip_between_close_roots_is_found);
+    tcase_add_test(r4, test_root4_sign_change_over_the_range_is_a_root);
+    tcase_add_test(r4, test_root4_requires_a_positive_constant_term);
+    tcase_add_test(r4, test_root4_always_terminates_inside_the_range_before_the_root);
+    suite_add_tcase(s, r4);
+    tcase_add_test(tc, test_toi_circles_head_on_gap_over_closing_speed);
+    tcase_add_test(tc, test_toi_is_a_step_time_when_searching_from_a_later_t0);
+    tcase_add_test(tc, test_toi_falling_circle_meets_box_top_face);
+    tcase_add_test(tc, test_toi_circle_meets_box_corner_at_radius_distance);
+    tcase_add_test(tc, test_toi_falling_box_meets_box_face_with_a_vertex);
+    tcase_add_test(tc, test_toi_circles_with_different_accelerations_match_scan);
+    tcase_add_test(tc, test_toi_projectile_onto_static_circle_is_not_missed);
+    tcase_add_test(tc, test_toi_rotating_box_stops_within_tolerance_before_contact);
+    tcase_add_test(tc, test_toi_passing_bodies_miss);
+    suite_add_tcase(s, tc);
+    return s;
+}
