@@ -32,7 +32,7 @@ CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
 
 SCENE ?= tools/scenes/default.scene
 
-.PHONY: all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
+.PHONY: bench all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
 
 all: $(LIB) $(CLI)
 
@@ -114,6 +114,10 @@ check: deps
 
 run: $(CLI)
 	@sh tools/run-default.sh $(CLI) $(SCENE)
+
+# Speed and memory targets live here, not in unit tests.
+bench:
+	sh tools/bench.sh
 
 clean:
 	rm -rf $(BUILD)

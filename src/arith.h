@@ -55,6 +55,25 @@ extern uint64_t *carom__op_row;
 
 /* ---- scalar ops ---------------------------------------------------------- */
 
+#if defined(CR_ARITH_PLAIN) && !CAROM_ENABLE_PROFILE
+/* Reference build for tools/check-zero-cost.sh: the same operations as bare
+ * C operators. The default build must compile to the same machine code. */
+#define cr_add(a, b) ((a) + (b))
+#define cr_sub(a, b) ((a) - (b))
+#define cr_neg(a) (-(a))
+#define cr_mul(a, b) ((a) * (b))
+#define cr_div(a, b) ((a) / (b))
+#define cr_sqrt(a) sqrtf(a)
+#define cr_lt(a, b) ((a) < (b))
+#define cr_le(a, b) ((a) <= (b))
+#define cr_gt(a, b) ((a) > (b))
+#define cr_ge(a, b) ((a) >= (b))
+#define cr_eq(a, b) ((a) == (b))
+CR_INLINE float cr_min(float a, float b) { return a < b ? a : b; }
+CR_INLINE float cr_max(float a, float b) { return a > b ? a : b; }
+CR_INLINE float cr_abs(float a) { return a < 0.0f ? -a : a; }
+#else
+
 CR_INLINE float cr_add(float a, float b) { CR_COUNT(CR_OP_ADD); return a + b; }
 CR_INLINE float cr_sub(float a, float b) { CR_COUNT(CR_OP_SUB); return a - b; }
 CR_INLINE float cr_neg(float a) { CR_COUNT(CR_OP_SUB); return -a; }
@@ -71,6 +90,7 @@ CR_INLINE int cr_eq(float a, float b) { CR_COUNT(CR_OP_CMP); return a == b; }
 CR_INLINE float cr_min(float a, float b) { CR_COUNT(CR_OP_CMP); return a < b ? a : b; }
 CR_INLINE float cr_max(float a, float b) { CR_COUNT(CR_OP_CMP); return a > b ? a : b; }
 CR_INLINE float cr_abs(float a) { CR_COUNT(CR_OP_CMP); return a < 0.0f ? -a : a; }
+#endif
 CR_INLINE float cr_clamp(float a, float lo, float hi) { return cr_min(cr_max(a, lo), hi); }
 
 /* Finite test without libm: NaN fails a == a, infinities fail a - a == 0.

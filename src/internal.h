@@ -78,6 +78,9 @@ typedef struct cr_point {
     float sep;      /* signed distance along the normal (< 0: overlap) */
     unsigned id;    /* feature id, for matching across steps */
     cr_v2 ra, rb;   /* from each centre of mass to p */
+    float rna, rnb; /* lever arms r x n of the normal impulse (exactly 0
+                       for a circle: its normal passes through the centre) */
+    float rta, rtb; /* lever arms r x t of the tangent impulse */
     float pn, pt;   /* accumulated normal and tangent impulses */
     float mass_n, mass_t;
     float target;   /* normal velocity the solver aims for (restitution) */

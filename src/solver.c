@@ -50,14 +50,25 @@
 
 static cr_v2 cr_tangent(cr_v2 n) { return cr_v(n.y, cr_neg(n.x)); }
 
-static float cr_effective_mass(const cr_body *A, const cr_body *B, cr_v2 ra,
-                               cr_v2 rb, cr_v2 dir)
+/* 1 / (1/m_a + 1/m_b + ra_x^2 / I_a + rb_x^2 / I_b) for lever arms
+ * ra_x = ra x dir, rb_x = rb x dir. */
+static float cr_effective_mass(const cr_body *A, const cr_body *B, float rla,
+                               float rlb)
 {
-    float rna = cr_vcross(ra, dir), rnb = cr_vcross(rb, dir);
     float k = cr_add(cr_add(A->inv_m, B->inv_m),
-                     cr_add(cr_mul(A->inv_I, cr_mul(rna, rna)),
-                            cr_mul(B->inv_I, cr_mul(rnb, rnb))));
+                     cr_add(cr_mul(A->inv_I, cr_mul(rla, rla)),
+                            cr_mul(B->inv_I, cr_mul(rlb, rlb))));
     return cr_gt(k, 0.0f) ? cr_div(1.0f, k) : 0.0f;
+}
+
+/* Lever arm of an impulse along dir at r from the centre of b: r x dir,
+ * except for the normal of a circle, where it is 0 by geometry (rounding
+ * would otherwise spin every circle a little at every impact). */
+static float cr_lever(const cr_body *b, cr_v2 r, cr_v2 dir, int normal)
+{
+    if (normal && b->shape == CAROM_SHAPE_CIRCLE)
+        return 0.0f;
+    return cr_vcross(r, dir);
 }
 
 /* Relative velocity of B's material point at rb w.r.t. A's at ra. */
@@ -69,16 +80,19 @@ static cr_v2 cr_relative_velocity(const cr_body *A, const cr_body *B,
     return cr_vsub(vb, va);
 }
 
-static void cr_apply(cr_body *A, cr_body *B, cr_v2 ra, cr_v2 rb, cr_v2 P)
+/* Impulse d along dir at a point with lever arms rla, rlb: -d on A, +d on B. */
+static void cr_apply(cr_body *A, cr_body *B, float rla, float rlb, cr_v2 dir,
+                     float d)
 {
+    cr_v2 P = cr_vscale(d, dir);
     A->vel = cr_vmadd(A->vel, cr_neg(A->inv_m), P);
     B->vel = cr_vmadd(B->vel, B->inv_m, P);
 #if CAROM_ENABLE_ROTATION
-    A->w = cr_sub(A->w, cr_mul(A->inv_I, cr_vcross(ra, P)));
-    B->w = cr_add(B->w, cr_mul(B->inv_I, cr_vcross(rb, P)));
+    A->w = cr_sub(A->w, cr_mul(A->inv_I, cr_mul(rla, d)));
+    B->w = cr_add(B->w, cr_mul(B->inv_I, cr_mul(rlb, d)));
 #else
-    (void)ra;
-    (void)rb;
+    (void)rla;
+    (void)rlb;
 #endif
 }
 
@@ -178,8 +192,12 @@ static void cr_prepare_manifold(carom_world *w, cr_manifold *m,
         cr_point *p = &m->pts[k];
         p->ra = cr_vsub(p->p, A->x);
         p->rb = cr_vsub(p->p, B->x);
-        p->mass_n = cr_effective_mass(A, B, p->ra, p->rb, m->n);
-        p->mass_t = cr_effective_mass(A, B, p->ra, p->rb, t);
+        p->rna = cr_lever(A, p->ra, m->n, 1);
+        p->rnb = cr_lever(B, p->rb, m->n, 1);
+        p->rta = cr_lever(A, p->ra, t, 0);
+        p->rtb = cr_lever(B, p->rb, t, 0);
+        p->mass_n = cr_effective_mass(A, B, p->rna, p->rnb);
+        p->mass_t = cr_effective_mass(A, B, p->rta, p->rtb);
         p->vn0 = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
         p->approach = cr_contact_speed(A, B, p, m->n);
         p->target = !resting_only && cr_gt(p->approach, rest)
@@ -191,10 +209,8 @@ static void cr_prepare_manifold(carom_world *w, cr_manifold *m,
     }
     m->block = 0;
     if (m->count == 2) {
-        float r1a = cr_vcross(m->pts[0].ra, m->n);
-        float r1b = cr_vcross(m->pts[0].rb, m->n);
-        float r2a = cr_vcross(m->pts[1].ra, m->n);
-        float r2b = cr_vcross(m->pts[1].rb, m->n);
+        float r1a = m->pts[0].rna, r1b = m->pts[0].rnb;
+        float r2a = m->pts[1].rna, r2b = m->pts[1].rnb;
         float lin = cr_add(A->inv_m, B->inv_m);
         float det;
         m->k11 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r1a, r1a)),
@@ -217,9 +233,10 @@ static void cr_warm_start(carom_world *w, const cr_manifold *m)
     cr_v2 t = cr_tangent(m->n);
     for (k = 0; k < m->count; ++k) {
         const cr_point *p = &m->pts[k];
-        if (!cr_eq(p->pn, 0.0f) || !cr_eq(p->pt, 0.0f))
-            cr_apply(A, B, p->ra, p->rb,
-                     cr_vadd(cr_vscale(p->pn, m->n), cr_vscale(p->pt, t)));
+        if (!cr_eq(p->pn, 0.0f))
+            cr_apply(A, B, p->rna, p->rnb, m->n, p->pn);
+        if (!cr_eq(p->pt, 0.0f))
+            cr_apply(A, B, p->rta, p->rtb, t, p->pt);
     }
 }
 
@@ -296,8 +313,8 @@ static int cr_block_normal(cr_manifold *m, cr_body *A, cr_body *B)
         return 0;
     p1->pn = x1;
     p2->pn = x2;
-    cr_apply(A, B, p1->ra, p1->rb, cr_vscale(cr_sub(x1, a1), m->n));
-    cr_apply(A, B, p2->ra, p2->rb, cr_vscale(cr_sub(x2, a2), m->n));
+    cr_apply(A, B, p1->rna, p1->rnb, m->n, cr_sub(x1, a1));
+    cr_apply(A, B, p2->rna, p2->rnb, m->n, cr_sub(x2, a2));
     return 1;
 }
 
@@ -317,7 +334,7 @@ static void cr_solve_manifold(carom_world *w, cr_manifold *m)
                                 cr_neg(limit), limit);
             float d = cr_sub(pt, p->pt);
             p->pt = pt;
-            cr_apply(A, B, p->ra, p->rb, cr_vscale(d, t));
+            cr_apply(A, B, p->rta, p->rtb, t, d);
         }
     }
 #endif
@@ -330,7 +347,7 @@ static void cr_solve_manifold(carom_world *w, cr_manifold *m)
                           0.0f);
         float d = cr_sub(pn, p->pn);
         p->pn = pn;
-        cr_apply(A, B, p->ra, p->rb, cr_vscale(d, m->n));
+        cr_apply(A, B, p->rna, p->rnb, m->n, d);
     }
 }
 
@@ -384,16 +401,17 @@ static float cr_current_sep(const cr_manifold *m, const cr_point *p,
     return cr_add(p->sep, cr_vdot(m->n, cr_vsub(db, da)));
 }
 
-static void cr_move(cr_body *A, cr_body *B, cr_v2 ra, cr_v2 rb, cr_v2 P)
+static void cr_move(cr_body *A, cr_body *B, const cr_point *p, cr_v2 n,
+                    float d)
 {
+    cr_v2 P = cr_vscale(d, n);
     A->dx = cr_vmadd(A->dx, cr_neg(A->inv_m), P);
     B->dx = cr_vmadd(B->dx, B->inv_m, P);
 #if CAROM_ENABLE_ROTATION
-    A->dtheta = cr_sub(A->dtheta, cr_mul(A->inv_I, cr_vcross(ra, P)));
-    B->dtheta = cr_add(B->dtheta, cr_mul(B->inv_I, cr_vcross(rb, P)));
+    A->dtheta = cr_sub(A->dtheta, cr_mul(A->inv_I, cr_mul(p->rna, d)));
+    B->dtheta = cr_add(B->dtheta, cr_mul(B->inv_I, cr_mul(p->rnb, d)));
 #else
-    (void)ra;
-    (void)rb;
+    (void)p;
 #endif
 }
 
@@ -429,8 +447,8 @@ void cr_solver_positions(carom_world *w)
                 if (cr_eq(c1, 0.0f) && cr_eq(c2, 0.0f))
                     continue;
                 if (cr_lcp2(m, c1, c2, &x1, &x2)) {
-                    cr_move(A, B, m->pts[0].ra, m->pts[0].rb, cr_vscale(x1, m->n));
-                    cr_move(A, B, m->pts[1].ra, m->pts[1].rb, cr_vscale(x2, m->n));
+                    cr_move(A, B, &m->pts[0], m->n, x1);
+                    cr_move(A, B, &m->pts[1], m->n, x2);
                     continue;
                 }
             }
@@ -439,8 +457,7 @@ void cr_solver_positions(carom_world *w)
                 float c = cr_correction(cr_current_sep(m, p, A, B));
                 if (cr_eq(c, 0.0f))
                     continue;
-                cr_move(A, B, p->ra, p->rb,
-                        cr_vscale(cr_neg(cr_mul(p->mass_n, c)), m->n));
+                cr_move(A, B, p, m->n, cr_neg(cr_mul(p->mass_n, c)));
             }
         }
     }
@@ -474,15 +491,21 @@ void cr_solver_store(carom_world *w)
         for (k = 0; k < m->count; ++k) {
             cr_point *p = &m->pts[k];
             cr_v2 F;
+            float scale, fn, ft;
             if (cr_eq(p->rest_frac, 0.0f))
                 continue; /* an impact, not a resting force */
-            F = cr_vscale(cr_mul(inv_dt, p->rest_frac),
-                          cr_vadd(cr_vscale(p->pn, m->n), cr_vscale(p->pt, t)));
+            scale = cr_mul(inv_dt, p->rest_frac);
+            fn = cr_mul(scale, p->pn);
+            ft = cr_mul(scale, p->pt);
+            F = cr_vadd(cr_vscale(fn, m->n), cr_vscale(ft, t));
             A->acc_c = cr_vmadd(A->acc_c, cr_neg(A->inv_m), F);
             B->acc_c = cr_vmadd(B->acc_c, B->inv_m, F);
 #if CAROM_ENABLE_ROTATION
-            A->alpha_c = cr_sub(A->alpha_c, cr_mul(A->inv_I, cr_vcross(p->ra, F)));
-            B->alpha_c = cr_add(B->alpha_c, cr_mul(B->inv_I, cr_vcross(p->rb, F)));
+            /* torque: the lever arms times the force components */
+            A->alpha_c = cr_sub(A->alpha_c, cr_mul(A->inv_I, cr_add(cr_mul(p->rna, fn),
+                                                                    cr_mul(p->rta, ft))));
+            B->alpha_c = cr_add(B->alpha_c, cr_mul(B->inv_I, cr_add(cr_mul(p->rnb, fn),
+                                                                    cr_mul(p->rtb, ft))));
 #endif
         }
     }

@@ -63,6 +63,13 @@ static int cr_spins(const cr_body *b)
 #endif
 }
 
+static cr_v2 cr_body_position_at(const cr_body *b, float t)
+{
+    float h = cr_sub(t, b->t_sync);
+    return cr_vadd(cr_vadd(b->x, cr_vscale(h, b->vel)),
+                   cr_vscale(cr_mul(0.5f, cr_mul(h, h)), b->acc_d));
+}
+
 void cr_body_pose(const cr_body *b, float t, cr_v2 *x, cr_rot *q)
 {
     float h = cr_sub(t, b->t_sync);
@@ -97,11 +104,11 @@ void cr_body_swept_bounds(const cr_body *b, float t0, float t1, float margin,
                           cr_proxy *out)
 {
     cr_v2 x0, x1, u;
-    cr_rot q;
     float s1 = cr_sub(t1, t0), lo[2], hi[2], half[4];
     int k;
-    cr_body_pose(b, t0, &x0, &q);
-    cr_body_pose(b, t1, &x1, &q);
+    /* positions only: the shape's box or extent covers the rotation */
+    x0 = cr_body_position_at(b, t0);
+    x1 = cr_body_position_at(b, t1);
     u = cr_vmadd(b->vel, cr_sub(t0, b->t_sync), b->acc_d); /* velocity at t0 */
     lo[0] = cr_min(x0.x, x1.x); hi[0] = cr_max(x0.x, x1.x);
     lo[1] = cr_min(x0.y, x1.y); hi[1] = cr_max(x0.y, x1.y);

@@ -166,15 +166,16 @@ END_TEST
 
 /* One head-on frictionless impact of two circles touching at the origin:
  * the 1D restitution impulse as the engine computes it (2D, with the
- * angular terms). Preparation: add 11, sub 15, mul 24, div 2, cmp 7, sqrt
- * 1; one visit: add 10, sub 11, mul 19, cmp 3 (incl. the iteration test);
- * the sum: add 1, cmp 1. */
+ * angular terms; a circle's normal lever arm is 0 without arithmetic).
+ * Preparation: add 11, sub 13, mul 20, div 2, cmp 7, sqrt 1; the test for
+ * friction's extra visits: cmp 1; one visit: add 10, sub 9, mul 17, cmp 2;
+ * the sums: add 1, cmp 1. */
 START_TEST(test_restitution_impulse_counts)
 {
     carom_world_def wd = carom_default_world_def();
     carom_body_def bd = carom_default_body_def();
     uint64_t row[CAROM_OP_COUNT] = {0};
-    counts c = {22, 26, 43, 2, 11, 1};
+    counts c = {22, 22, 37, 2, 11, 1};
     cr_manifold m;
     float approach, impulse;
     tw t;

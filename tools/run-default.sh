@@ -25,3 +25,6 @@ fi
 echo
 echo "final state:"
 table < "$tmp/final.csv"
+echo
+echo "floating-point work (carom profile, design note's cost table; docs/cost-model.md):"
+"$carom" profile "$scene" | sed -n '/^phase/,$p'

@@ -1,0 +1,629 @@
+/*
+ * carom_box2d.cpp -- build/carom-box2d: run carom scene files through
+ * Box2D 2.4.1 (Debian's libbox2d-dev), for validation against carom
+ * (issue 5, tools/validate.sh, docs/validation.md).
+ *
+ * The scene is read by carom's own parser (tools/scene.c), so both engines
+ * see the same numbers, and the carom world is built too: that checks the
+ * scene exactly as build/carom does and gives carom's masses, inertias and
+ * centres of mass to compare with Box2D's. The output formats are those of
+ * build/carom (final state, --trace, --events).
+ *
+ * What Box2D cannot express is never silently changed: it is a note on
+ * stderr (method, contact slop, polygon skin), or an error with exit status
+ * 2 (a polygon Box2D would weld, reorder away or replace by a box).
+ *
+ * Exit status: 0 ok, 1 simulation error (non-finite state, or an output
+ * file could not be written), 2 bad usage or bad scene.
+ */
+#include <box2d/box2d.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "carom.h"
+#include "scene.h"
+
+namespace {
+
+const int EXIT_SIM = 1;
+const int EXIT_USAGE = 2;
+
+const char usage[] =
+    "usage: carom-box2d run SCENE [options]\n"
+    "       carom-box2d --help\n"
+    "\n"
+    "Step a carom scene file (docs/scene-format.md) with Box2D 2.4.1 and write\n"
+    "the final state of every body to stdout in build/carom's CSV format:\n"
+    "body,x,y,angle,vx,vy,omega (x, y: body origin; angle in (-pi, pi];\n"
+    "vx, vy: velocity of the centre of mass; omega: angular velocity).\n"
+    "\n"
+    "The Box2D world gets the scene's gravity, dt, iterations, shapes,\n"
+    "densities (mass= becomes density = mass / area), restitution, friction,\n"
+    "poses, velocities and constant forces; restitution threshold = the\n"
+    "scene's rest-speed; sleeping off. Box2D mixes restitution (max) and\n"
+    "friction (sqrt) as carom does.\n"
+    "\n"
+    "options:\n"
+    "  --steps N                  number of steps (overrides steps=)\n"
+    "  --dt DT                    time step in seconds (overrides dt=)\n"
+    "  --velocity-iterations N    overrides velocity-iterations=\n"
+    "  --position-iterations N    overrides position-iterations=\n"
+    "  --trace FILE               every body's state at step 0 and after every\n"
+    "                             step: step,t,body,x,y,angle,vx,vy,omega\n"
+    "  --events FILE              every contact that begins touching faster than\n"
+    "                             the rest speed, one row per contact and step:\n"
+    "                             t,body_a,body_b,nx,ny,impulse,approach_speed\n"
+    "                             (t = end of the step; approach speed from the\n"
+    "                             velocities when Box2D first finds the contact;\n"
+    "                             impulse = total normal impulse of that step)\n"
+    "  --masses FILE              carom's and Box2D's mass properties per body:\n"
+    "                             body,carom_mass,box2d_mass,carom_inertia,\n"
+    "                             box2d_inertia,cx,cy (inertia about the centre\n"
+    "                             of mass; cx, cy: centre in the body frame)\n"
+    "  --bullets                  make every dynamic body a Box2D bullet\n"
+    "                             (continuous collision against dynamic bodies\n"
+    "                             too; by default only against static ones)\n"
+    "  --time                     print the Step() time to stderr:\n"
+    "                             'carom-box2d: time: N steps, X ns/step'\n"
+    "  --quiet                    no notes on stderr (errors still go there)\n"
+    "  -h, --help                 show this help\n"
+    "\n"
+    "Notes on stderr name every difference Box2D cannot avoid: it has one\n"
+    "method (contacts found where bodies overlap at the start of a step,\n"
+    "continuous collision for bullets and against static bodies), a fixed\n"
+    "contact slop b2_linearSlop = 0.005 m, and a skin b2_polygonRadius =\n"
+    "0.01 m around every polygon. A polygon Box2D would alter (vertices\n"
+    "closer than 0.0025 m are welded, collinear ones dropped) is an error.\n"
+    "\n"
+    "exit status: 0 ok, 1 simulation error, 2 bad usage or bad scene\n";
+
+int usage_error(const char *fmt, const char *arg)
+{
+    std::fprintf(stderr, "carom-box2d: ");
+    std::fprintf(stderr, fmt, arg);
+    std::fprintf(stderr, "\n(try 'carom-box2d --help')\n");
+    return EXIT_USAGE;
+}
+
+bool parse_long(const char *v, long lo, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long x = std::strtol(v, &end, 10);
+    if (*v == '\0' || *end != '\0' || errno || x < lo || x > hi)
+        return false;
+    *out = x;
+    return true;
+}
+
+/* Angle of a rotation in (-pi, pi], like carom_rot_angle. */
+double wrap_angle(const b2Rot &q)
+{
+    double a = std::atan2((double)q.s, (double)q.c);
+    if (a <= -M_PI)
+        a = M_PI;
+    return a;
+}
+
+/* ---- contact events ----------------------------------------------------- */
+
+struct pending_event {
+    b2Contact *contact;
+    int a, b;           /* body ids, a < b */
+    double nx, ny;      /* from a to b */
+    double approach;    /* m/s, > rest speed */
+    double impulse;     /* sum of normal impulses reported this step */
+};
+
+class event_listener : public b2ContactListener {
+public:
+    float rest_speed = 0.5f;
+    std::vector<pending_event> pending;
+
+    static int id_of(b2Body *b)
+    {
+        return (int)b->GetUserData().pointer;
+    }
+
+    /* PreSolve runs for every touching contact before it is solved; a
+     * contact whose old manifold is empty has just begun touching. */
+    void PreSolve(b2Contact *contact, const b2Manifold *old) override
+    {
+        const b2Manifold *m = contact->GetManifold();
+        if (old->pointCount != 0 || m->pointCount == 0)
+            return;
+        b2Body *ba = contact->GetFixtureA()->GetBody();
+        b2Body *bb = contact->GetFixtureB()->GetBody();
+        b2WorldManifold wm;
+        contact->GetWorldManifold(&wm);
+        double approach = 0.0;
+        for (int i = 0; i < m->pointCount; ++i) {
+            b2Vec2 p = wm.points[i];
+            b2Vec2 dv = bb->GetLinearVelocityFromWorldPoint(p) -
+                        ba->GetLinearVelocityFromWorldPoint(p);
+            double vn = (double)dv.x * wm.normal.x + (double)dv.y * wm.normal.y;
+            approach = std::max(approach, -vn);
+        }
+        if (!(approach > (double)rest_speed))
+            return;
+        pending_event e;
+        e.contact = contact;
+        e.a = id_of(ba);
+        e.b = id_of(bb);
+        e.nx = wm.normal.x;
+        e.ny = wm.normal.y;
+        if (e.a > e.b) {
+            std::swap(e.a, e.b);
+            e.nx = -e.nx;
+            e.ny = -e.ny;
+        }
+        e.approach = approach;
+        e.impulse = 0.0;
+        pending.push_back(e);
+    }
+
+    /* Box2D reports the accumulated impulses of every solved contact. A
+     * contact can be solved twice in a step (regular solve, then a
+     * time-of-impact sub-step with fresh impulses): the sum is the step's. */
+    void PostSolve(b2Contact *contact, const b2ContactImpulse *imp) override
+    {
+        for (pending_event &e : pending) {
+            if (e.contact != contact)
+                continue;
+            for (int i = 0; i < imp->count; ++i)
+                e.impulse += imp->normalImpulses[i];
+        }
+    }
+};
+
+/* ---- building the Box2D world --------------------------------------------- */
+
+double polygon_area(const carom_body_def &d)
+{
+    double a = 0.0;
+    for (int i = 0; i < d.vertex_count; ++i) {
+        const carom_vec2 &p = d.vertices[i];
+        const carom_vec2 &q = d.vertices[(i + 1) % d.vertex_count];
+        a += (double)p.x * q.y - (double)q.x * p.y;
+    }
+    return std::fabs(a) / 2.0;
+}
+
+/* Smallest width of a convex polygon (over its edge normals). */
+double polygon_width(const carom_body_def &d)
+{
+    double best = INFINITY;
+    int n = d.vertex_count;
+    for (int i = 0; i < n; ++i) {
+        const carom_vec2 &p = d.vertices[i];
+        const carom_vec2 &q = d.vertices[(i + 1) % n];
+        double ex = (double)q.x - p.x, ey = (double)q.y - p.y;
+        double len = std::sqrt(ex * ex + ey * ey);
+        double w = 0.0;
+        for (int j = 0; j < n; ++j) {
+            double dx = (double)d.vertices[j].x - p.x;
+            double dy = (double)d.vertices[j].y - p.y;
+            w = std::max(w, std::fabs(ex * dy - ey * dx) / len);
+        }
+        best = std::min(best, w);
+    }
+    return best;
+}
+
+/* Make Box2D's polygon of a scene polygon, or explain why Box2D cannot
+ * represent it unchanged (b2PolygonShape::Set welds vertices closer than
+ * 0.5 b2_linearSlop, drops collinear ones in its hull, and replaces what is
+ * left degenerate by a 2 x 2 box). Returns false with a message in err. */
+bool make_polygon(const carom_body_def &d, b2PolygonShape *shape, char *err,
+                  size_t errlen)
+{
+    const int n = d.vertex_count;
+    const float weld = 0.5f * b2_linearSlop;
+    b2Vec2 pts[b2_maxPolygonVertices];
+    if (n > b2_maxPolygonVertices) {
+        std::snprintf(err, errlen, "polygon with %d vertices: Box2D allows at most %d "
+                      "(b2_maxPolygonVertices)", n, b2_maxPolygonVertices);
+        return false;
+    }
+    for (int i = 0; i < n; ++i)
+        pts[i].Set(d.vertices[i].x, d.vertices[i].y);
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+            if (b2DistanceSquared(pts[i], pts[j]) < weld * weld) {
+                std::snprintf(err, errlen, "vertices %d and %d are %.3g m apart: Box2D welds "
+                              "vertices closer than %.4g m (0.5 b2_linearSlop), so it cannot "
+                              "represent this polygon (too thin or too small for Box2D)",
+                              i, j, (double)b2Distance(pts[i], pts[j]), (double)weld);
+                return false;
+            }
+    shape->Set(pts, n);
+    /* Box2D's hull must hold exactly the scene's vertices. */
+    bool same = shape->m_count == n;
+    for (int i = 0; same && i < n; ++i) {
+        bool found = false;
+        for (int j = 0; j < shape->m_count; ++j)
+            if (shape->m_vertices[j].x == pts[i].x && shape->m_vertices[j].y == pts[i].y)
+                found = true;
+        same = found;
+    }
+    if (!same) {
+        std::snprintf(err, errlen, "Box2D's convex hull of this polygon has %d of its %d "
+                      "vertices (it drops nearly collinear vertices): Box2D cannot "
+                      "represent it unchanged", shape->m_count, n);
+        return false;
+    }
+    return true;
+}
+
+struct options {
+    const char *scene_path = nullptr;
+    const char *trace_path = nullptr;
+    const char *events_path = nullptr;
+    const char *masses_path = nullptr;
+    long steps = -1;
+    double dt = -1.0;
+    long vel_iters = -1;
+    long pos_iters = -1;
+    bool bullets = false;
+    bool timing = false;
+    bool quiet = false;
+};
+
+FILE *open_out(const char *path)
+{
+    FILE *f = std::fopen(path, "w");
+    if (!f)
+        std::fprintf(stderr, "carom-box2d: cannot write '%s': %s\n", path, std::strerror(errno));
+    return f;
+}
+
+void write_state(FILE *f, const b2Body *b, int i, const char *prefix)
+{
+    const b2Vec2 p = b->GetPosition();
+    const b2Vec2 v = b->GetLinearVelocity();
+    std::fprintf(f, "%s%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", prefix, i, (double)p.x,
+                 (double)p.y, wrap_angle(b->GetTransform().q), (double)v.x, (double)v.y,
+                 (double)b->GetAngularVelocity());
+}
+
+void write_trace(FILE *f, const std::vector<b2Body *> &bodies, long step, float t)
+{
+    char prefix[64];
+    std::snprintf(prefix, sizeof prefix, "%ld,%.9g,", step, (double)t);
+    for (size_t i = 0; i < bodies.size(); ++i)
+        write_state(f, bodies[i], (int)i, prefix);
+}
+
+bool finite_state(const b2Body *b)
+{
+    const b2Vec2 p = b->GetPosition();
+    const b2Vec2 v = b->GetLinearVelocity();
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(b->GetAngle()) &&
+           std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(b->GetAngularVelocity());
+}
+
+double now_ns()
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
+}
+
+int cmd_run(int argc, char **argv)
+{
+    options o;
+    for (int i = 0; i < argc; ++i) {
+        const char *a = argv[i];
+        if (!std::strcmp(a, "-h") || !std::strcmp(a, "--help")) {
+            std::fputs(usage, stdout);
+            return 0;
+        } else if (!std::strcmp(a, "--bullets")) {
+            o.bullets = true;
+        } else if (!std::strcmp(a, "--time")) {
+            o.timing = true;
+        } else if (!std::strcmp(a, "--quiet")) {
+            o.quiet = true;
+        } else if (!std::strcmp(a, "--steps") || !std::strcmp(a, "--dt") ||
+                   !std::strcmp(a, "--trace") || !std::strcmp(a, "--events") ||
+                   !std::strcmp(a, "--masses") ||
+                   !std::strcmp(a, "--velocity-iterations") ||
+                   !std::strcmp(a, "--position-iterations")) {
+            if (i + 1 >= argc)
+                return usage_error("%s needs a value", a);
+            const char *v = argv[++i];
+            if (!std::strcmp(a, "--steps")) {
+                if (!parse_long(v, 0, 1000000000L, &o.steps))
+                    return usage_error("--steps: want an integer in [0, 1e9], got '%s'", v);
+            } else if (!std::strcmp(a, "--dt")) {
+                char *end;
+                errno = 0;
+                o.dt = std::strtod(v, &end);
+                if (*v == '\0' || *end != '\0' || errno || !std::isfinite(o.dt) ||
+                    !(o.dt > 0.0) || o.dt > 1.0e30)
+                    return usage_error("--dt: want a finite number > 0, got '%s'", v);
+            } else if (!std::strcmp(a, "--velocity-iterations")) {
+                if (!parse_long(v, 1, 1000, &o.vel_iters))
+                    return usage_error("--velocity-iterations: want an integer in [1, 1000], got '%s'", v);
+            } else if (!std::strcmp(a, "--position-iterations")) {
+                if (!parse_long(v, 0, 1000, &o.pos_iters))
+                    return usage_error("--position-iterations: want an integer in [0, 1000], got '%s'", v);
+            } else if (!std::strcmp(a, "--trace")) {
+                o.trace_path = v;
+            } else if (!std::strcmp(a, "--events")) {
+                o.events_path = v;
+            } else {
+                o.masses_path = v;
+            }
+        } else if (a[0] == '-' && a[1] != '\0') {
+            return usage_error("unknown option '%s'", a);
+        } else if (!o.scene_path) {
+            o.scene_path = a;
+        } else {
+            return usage_error("more than one scene given ('%s')", a);
+        }
+    }
+    if (!o.scene_path)
+        return usage_error("%s", "run: missing SCENE");
+
+    scene s;
+    char err[512];
+    if (scene_load(o.scene_path, &s, err, sizeof err) != 0) {
+        std::fprintf(stderr, "carom-box2d: %s\n", err);
+        return EXIT_USAGE;
+    }
+    if (o.steps >= 0)
+        s.steps = o.steps;
+    if (o.dt > 0.0)
+        s.world.dt = (float)o.dt;
+    if (o.vel_iters >= 0)
+        s.world.velocity_iterations = (int)o.vel_iters;
+    if (o.pos_iters >= 0)
+        s.world.position_iterations = (int)o.pos_iters;
+    const char *path = o.scene_path;
+
+    /* The carom world: the same checks as build/carom, and the reference
+     * mass properties. */
+    carom_world *cw = nullptr;
+    void *cmem = nullptr;
+    if (scene_build_world(&s, &cw, &cmem, err, sizeof err) != 0) {
+        std::fprintf(stderr, "carom-box2d: %s: %s\n", path, err);
+        scene_free(&s);
+        return EXIT_USAGE;
+    }
+    if (s.world.velocity_iterations < 1) {
+        std::fprintf(stderr, "carom-box2d: %s: velocity-iterations=0: Box2D needs at least 1 "
+                     "velocity iteration to resolve contacts\n", path);
+        std::free(cmem);
+        scene_free(&s);
+        return EXIT_USAGE;
+    }
+
+    const float dt = s.world.dt;
+    const float rest = s.world.rest_speed;
+    b2World world(b2Vec2(s.world.gravity.x, s.world.gravity.y));
+    world.SetAllowSleeping(false);
+    event_listener listener;
+    listener.rest_speed = rest;
+    world.SetContactListener(&listener);
+
+    std::vector<b2Body *> bodies;
+    bool any_polygon = false;
+    double thinnest = INFINITY;
+    int thinnest_id = -1;
+    int rc = 0;
+    for (int i = 0; i < s.body_count; ++i) {
+        const scene_body &sb = s.bodies[i];
+        const carom_body_def &d = sb.def;
+        const bool dyn = d.type == CAROM_BODY_DYNAMIC;
+        b2BodyDef bd;
+        bd.type = dyn ? b2_dynamicBody : b2_staticBody;
+        bd.position.Set(d.position.x, d.position.y);
+        bd.angle = sb.angle;
+        bd.allowSleep = false;
+        bd.bullet = dyn && o.bullets;
+        bd.userData.pointer = (uintptr_t)i;
+
+        b2CircleShape circle;
+        b2PolygonShape poly;
+        b2FixtureDef fd;
+        double area;
+        if (d.shape == CAROM_SHAPE_CIRCLE) {
+            circle.m_radius = d.radius;
+            fd.shape = &circle;
+            area = M_PI * (double)d.radius * (double)d.radius;
+        } else {
+            if (!make_polygon(d, &poly, err, sizeof err)) {
+                std::fprintf(stderr, "carom-box2d: %s:%d: body %d: %s\n", path, sb.line, i, err);
+                rc = EXIT_USAGE;
+                break;
+            }
+            fd.shape = &poly;
+            area = polygon_area(d);
+            any_polygon = true;
+            double w = polygon_width(d);
+            if (w < thinnest) {
+                thinnest = w;
+                thinnest_id = i;
+            }
+        }
+        float cmass = 0.0f, cinertia = 0.0f;
+        carom_body_get_mass(cw, i, &cmass, &cinertia);
+        fd.density = dyn ? (float)((double)cmass / area) : 0.0f;
+        fd.friction = d.friction;
+        fd.restitution = d.restitution;
+        fd.restitutionThreshold = rest;
+        b2Body *b = world.CreateBody(&bd);
+        b->CreateFixture(&fd);
+        if (dyn) {
+            /* carom's velocity is the centre of mass's, as is Box2D's
+             * linear velocity: set after the fixture fixed the centre. */
+            b->SetLinearVelocity(b2Vec2(d.velocity.x, d.velocity.y));
+            b->SetAngularVelocity(d.angular_velocity);
+            float bm = b->GetMass();
+            if (std::fabs((double)bm - cmass) > 1e-5 * cmass && !o.quiet)
+                std::fprintf(stderr, "carom-box2d: note: body %d: Box2D mass %.9g, carom %.9g\n",
+                             i, (double)bm, (double)cmass);
+        }
+        bodies.push_back(b);
+    }
+    if (rc != 0) {
+        std::free(cmem);
+        scene_free(&s);
+        return rc;
+    }
+
+    if (!o.quiet) {
+        std::fprintf(stderr, "carom-box2d: note: Box2D has one method (contacts found where "
+                     "bodies overlap at the start of a step; continuous collision only %s); "
+                     "the scene's method=%s is not used\n",
+                     o.bullets ? "for bullets and against static bodies"
+                               : "against static bodies",
+                     carom_method_name(s.world.method));
+        std::fprintf(stderr, "carom-box2d: note: Box2D's contact slop is b2_linearSlop = "
+                     "%g m (compiled in); the scene's slop=%g m is not used\n",
+                     (double)b2_linearSlop, (double)s.world.linear_slop);
+        if (any_polygon)
+            std::fprintf(stderr, "carom-box2d: note: Box2D keeps polygons b2_polygonRadius "
+                         "= %g m apart (a skin on every polygon); thinnest polygon: body "
+                         "%d, %.4g m wide\n", (double)b2_polygonRadius, thinnest_id, thinnest);
+    }
+
+    if (o.masses_path) {
+        FILE *mf = open_out(o.masses_path);
+        if (!mf) {
+            std::free(cmem);
+            scene_free(&s);
+            return EXIT_USAGE;
+        }
+        std::fputs("body,carom_mass,box2d_mass,carom_inertia,box2d_inertia,cx,cy\n", mf);
+        for (size_t i = 0; i < bodies.size(); ++i) {
+            float cm = 0.0f, ci = 0.0f;
+            carom_body_get_mass(cw, (int)i, &cm, &ci);
+            const b2Body *b = bodies[i];
+            b2Vec2 lc = b->GetLocalCenter();
+            double bm = b->GetMass();
+            /* GetInertia is about the body origin */
+            double bi = (double)b->GetInertia() - bm * ((double)lc.x * lc.x + (double)lc.y * lc.y);
+            std::fprintf(mf, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", i, (double)cm, bm,
+                         (double)ci, bi, (double)lc.x, (double)lc.y);
+        }
+        if (std::fclose(mf) != 0) {
+            std::fprintf(stderr, "carom-box2d: error writing '%s'\n", o.masses_path);
+            std::free(cmem);
+            scene_free(&s);
+            return EXIT_SIM;
+        }
+    }
+    std::free(cmem);
+    cmem = nullptr;
+
+    FILE *trace = nullptr, *events = nullptr;
+    if (o.trace_path && !(trace = open_out(o.trace_path))) {
+        scene_free(&s);
+        return EXIT_USAGE;
+    }
+    if (o.events_path && !(events = open_out(o.events_path))) {
+        if (trace)
+            std::fclose(trace);
+        scene_free(&s);
+        return EXIT_USAGE;
+    }
+    if (trace) {
+        std::fputs("step,t,body,x,y,angle,vx,vy,omega\n", trace);
+        write_trace(trace, bodies, 0, 0.0f);
+    }
+    if (events)
+        std::fputs("t,body_a,body_b,nx,ny,impulse,approach_speed\n", events);
+
+    const int vel_iters = s.world.velocity_iterations;
+    const int pos_iters = s.world.position_iterations;
+    double spent = 0.0;
+    long k;
+    for (k = 0; k < s.steps; ++k) {
+        double t0 = o.timing ? now_ns() : 0.0;
+        for (int i = 0; i < s.body_count; ++i) {
+            const carom_body_def &d = s.bodies[i].def;
+            if (d.type != CAROM_BODY_DYNAMIC)
+                continue;
+            if (d.force.x != 0.0f || d.force.y != 0.0f)
+                bodies[i]->ApplyForceToCenter(b2Vec2(d.force.x, d.force.y), true);
+            if (d.torque != 0.0f)
+                bodies[i]->ApplyTorque(d.torque, true);
+        }
+        listener.pending.clear();
+        world.Step(dt, vel_iters, pos_iters);
+        if (o.timing)
+            spent += now_ns() - t0;
+        /* carom_world_time: steps times dt, in float */
+        const float t = (float)(k + 1) * dt;
+        if (events) {
+            std::vector<pending_event> &ev = listener.pending;
+            std::stable_sort(ev.begin(), ev.end(), [](const pending_event &x, const pending_event &y) {
+                return x.a != y.a ? x.a < y.a : x.b < y.b;
+            });
+            for (const pending_event &e : ev)
+                std::fprintf(events, "%.9g,%d,%d,%.9g,%.9g,%.9g,%.9g\n", (double)t, e.a, e.b,
+                             e.nx, e.ny, e.impulse, e.approach);
+        }
+        if (trace)
+            write_trace(trace, bodies, k + 1, t);
+        bool ok = true;
+        for (const b2Body *b : bodies)
+            ok = ok && finite_state(b);
+        if (!ok) {
+            std::fprintf(stderr, "carom-box2d: %s: step %ld (t = %.9g s): Box2D produced a "
+                         "non-finite state\n", path, k + 1, (double)t);
+            rc = EXIT_SIM;
+            ++k;
+            break;
+        }
+    }
+    if (o.timing)
+        std::fprintf(stderr, "carom-box2d: time: %ld steps, %.1f ns/step\n", k,
+                     k > 0 ? spent / (double)k : 0.0);
+    if (rc == 0) {
+        std::puts("body,x,y,angle,vx,vy,omega");
+        for (size_t i = 0; i < bodies.size(); ++i)
+            write_state(stdout, bodies[i], (int)i, "");
+        if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+            std::fprintf(stderr, "carom-box2d: error writing the final state\n");
+            rc = EXIT_SIM;
+        }
+    }
+    if (trace && std::fclose(trace) != 0 && rc == 0) {
+        std::fprintf(stderr, "carom-box2d: error writing '%s'\n", o.trace_path);
+        rc = EXIT_SIM;
+    }
+    if (events && std::fclose(events) != 0 && rc == 0) {
+        std::fprintf(stderr, "carom-box2d: error writing '%s'\n", o.events_path);
+        rc = EXIT_SIM;
+    }
+    scene_free(&s);
+    return rc;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        std::fputs(usage, stderr);
+        return EXIT_USAGE;
+    }
+    if (!std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "--help") ||
+        !std::strcmp(argv[1], "help")) {
+        std::fputs(usage, stdout);
+        return 0;
+    }
+    if (!std::strcmp(argv[1], "run"))
+        return cmd_run(argc - 2, argv + 2);
+    return usage_error("unknown command '%s' (run)", argv[1]);
+}
