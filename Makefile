@@ -106,6 +106,7 @@ check-switches:
 check: deps
 	@$(MAKE) --no-print-directory all
 	@$(MAKE) --no-print-directory check-symbols
+	@$(MAKE) --no-print-directory check-switches
 	@$(MAKE) --no-print-directory unit
 	@$(MAKE) --no-print-directory readme-test
 	@$(MAKE) --no-print-directory cli-test
