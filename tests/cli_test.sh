@@ -310,6 +310,52 @@ run run "$tmp/cap.scene"
 expect_rc 1 "event cap reached"
 check "event cap: stderr names the cap" grep -q "max-events" "$tmp/err"
 
+# ---- profile ------------------------------------------------------------------
+
+run profile "$default_scene" --steps 20
+expect_rc 0 "profile"
+# shellcheck disable=SC2016 # the inner script expands its own variables
+check "profile: table has every phase" \
+    sh -c 'for p in integration broadphase narrowphase impact_timing impulse_resolution resting_contacts total; do grep -q "^$p " "$1" || exit 1; done' _ "$tmp/out"
+check "profile: seed weights named" grep -q "weights seed: add 1 sub 1 mul 1.5 div 4 cmp 1 sqrt 6" "$tmp/out"
+
+run profile "$default_scene" --steps 20 --json
+expect_rc 0 "profile --json"
+check "profile --json: one line" test "$(wc -l <"$tmp/out")" -eq 1
+# shellcheck disable=SC2016 # the inner script expands its own variables
+check "profile --json: required keys" \
+    sh -c 'for k in steps bodies impacts weights phases total_cost integration resting_contacts; do grep -q "\"$k\"" "$1" || exit 1; done' _ "$tmp/out"
+# total_cost equals the weighted sum of the phase counts (seed weights)
+awk '{
+    s = $0; sub(/.*"phases": /, "", s); total = s; sub(/.*"total_cost": /, "", total); sub(/}.*/, "", total)
+    sum = 0
+    while (match(s, /"(add|sub|mul|div|cmp|sqrt)": [0-9]+/)) {
+        kv = substr(s, RSTART, RLENGTH); s = substr(s, RSTART + RLENGTH)
+        split(kv, a, /": /); k = substr(a[1], 2)
+        sum += (k == "mul" ? 1.5 : k == "div" ? 4 : k == "sqrt" ? 6 : 1) * a[2]
+    }
+    d = sum - total; if (d < 0) d = -d
+    exit !(sum > 0 && d <= 1e-9 * sum + 0.5)
+}' "$tmp/out"
+verdict $? "profile --json: total_cost is the seed-weighted sum of the phase counts"
+
+printf 'add 1\nsub 1\nmul 1\ndiv 14\ncmp 1\nsqrt 14  # M4F\n' > "$tmp/w.txt"
+run profile "$default_scene" --steps 5 --weights "$tmp/w.txt"
+expect_rc 0 "profile --weights FILE"
+run profile "$default_scene" --steps 5 --weights cortex-m0
+expect_rc 0 "profile --weights cortex-m0"
+printf 'add 1\nsub 1\n' > "$tmp/w2.txt"
+run profile "$default_scene" --weights "$tmp/w2.txt"
+expect_rc 2 "profile: weights file missing kinds"
+check "profile: missing kind named" grep -q "no weight for 'mul'" "$tmp/err"
+printf 'add 1\nsub 1\nmul 1\ndiv 1\ncmp 1\nsqrt 1\nfma 2\n' > "$tmp/w3.txt"
+run profile "$default_scene" --weights "$tmp/w3.txt"
+expect_rc 2 "profile: unknown kind in weights file"
+run profile "$default_scene" --weights no-such-preset
+expect_rc 2 "profile: unknown weights preset"
+run profile
+expect_rc 2 "profile without a scene"
+
 # ---- summary -------------------------------------------------------------------
 
 echo "$passed passed, $failed failed"
