@@ -13,65 +13,44 @@
  */
 #include "internal.h"
 
-static void cr_sort_proxies(cr_proxy *a, cr_proxy *tmp, int n)
-{
-    int width, i;
-    cr_proxy *src = a, *dst = tmp;
-    for (width = 1; width < n; width *= 2) {
-        for (i = 0; i < n; i += 2 * width) {
-            int lo = i, mid = i + width < n ? i + width : n;
-            int hi = i + 2 * width < n ? i + 2 * width : n;
-            int l = lo, r = mid, k = lo;
-            while (l < mid && r < hi) {
-                /* take from the right only if strictly smaller: stable */
-                if (cr_lt(src[r].lo_x, src[l].lo_x))
-                    dst[k++] = src[r++];
-                else
-                    dst[k++] = src[l++];
-            }
-            while (l < mid)
-                dst[k++] = src[l++];
-            while (r < hi)
-                dst[k++] = src[r++];
-        }
-        { cr_proxy *t = src; src = dst; dst = t; }
+/*
+ * Bottom-up merge sort of n elements of TYPE in a, with scratch tmp of the
+ * same size; stable: an element from the right run is taken only if it is
+ * strictly LESS than the left one. Defined once, instantiated per type.
+ */
+#define CR_DEFINE_MERGE_SORT(NAME, TYPE, LESS)                                \
+    static void NAME(TYPE *a, TYPE *tmp, int n)                               \
+    {                                                                         \
+        int width, i;                                                         \
+        TYPE *src = a, *dst = tmp, *swap;                                     \
+        for (width = 1; width < n; width *= 2) {                              \
+            for (i = 0; i < n; i += 2 * width) {                              \
+                int mid = i + width < n ? i + width : n;                      \
+                int hi = i + 2 * width < n ? i + 2 * width : n;               \
+                int l = i, r = mid, k = i;                                    \
+                while (l < mid && r < hi)                                     \
+                    dst[k++] = LESS(src[r], src[l]) ? src[r++] : src[l++];    \
+                while (l < mid)                                               \
+                    dst[k++] = src[l++];                                      \
+                while (r < hi)                                                \
+                    dst[k++] = src[r++];                                      \
+            }                                                                 \
+            swap = src;                                                       \
+            src = dst;                                                        \
+            dst = swap;                                                       \
+        }                                                                     \
+        if (src != a)                                                         \
+            for (i = 0; i < n; ++i)                                           \
+                a[i] = src[i];                                                \
     }
-    if (src != a)
-        for (i = 0; i < n; ++i)
-            a[i] = src[i];
-}
 
-static int cr_pair_less(cr_pair x, cr_pair y)
-{
-    return x.a < y.a || (x.a == y.a && x.b < y.b);
-}
+/* proxies by lower x bound (a counted float compare) */
+#define CR_PROXY_LESS(x, y) cr_lt((x).lo_x, (y).lo_x)
+/* pairs by (a, b) */
+#define CR_PAIR_LESS(x, y) ((x).a < (y).a || ((x).a == (y).a && (x).b < (y).b))
 
-static void cr_sort_pairs(cr_pair *a, cr_pair *tmp, int n)
-{
-    int width, i;
-    cr_pair *src = a, *dst = tmp;
-    for (width = 1; width < n; width *= 2) {
-        for (i = 0; i < n; i += 2 * width) {
-            int lo = i, mid = i + width < n ? i + width : n;
-            int hi = i + 2 * width < n ? i + 2 * width : n;
-            int l = lo, r = mid, k = lo;
-            while (l < mid && r < hi) {
-                if (cr_pair_less(src[r], src[l]))
-                    dst[k++] = src[r++];
-                else
-                    dst[k++] = src[l++];
-            }
-            while (l < mid)
-                dst[k++] = src[l++];
-            while (r < hi)
-                dst[k++] = src[r++];
-        }
-        { cr_pair *t = src; src = dst; dst = t; }
-    }
-    if (src != a)
-        for (i = 0; i < n; ++i)
-            a[i] = src[i];
-}
+CR_DEFINE_MERGE_SORT(cr_sort_proxies, cr_proxy, CR_PROXY_LESS)
+CR_DEFINE_MERGE_SORT(cr_sort_pairs, cr_pair, CR_PAIR_LESS)
 
 /* Pairs of the boxes already in w->proxies (one per body, any order);
  * returns the number found (stored ones plus dropped ones). */
