@@ -32,7 +32,7 @@ CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
 
 SCENE ?= tools/scenes/default.scene
 
-.PHONY: bench all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
+.PHONY: check-cross bench all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
 
 all: $(LIB) $(CLI)
 
@@ -99,6 +99,10 @@ readme-test: $(LIB) | $(BUILD)/tests
 check-symbols: $(LIB) $(PROF_LIB)
 	sh tools/check-symbols.sh $(LIB) $(PROF_LIB)
 
+# The core builds for a Cortex-M4F (when arm-none-eabi-gcc is installed).
+check-cross:
+	sh tools/check-cross.sh $(BUILD)/m4f
+
 # Every switch of carom_config.h builds, and removes (or adds) code.
 check-switches:
 	sh tools/check-switches.sh
@@ -107,6 +111,7 @@ check: deps
 	@$(MAKE) --no-print-directory all
 	@$(MAKE) --no-print-directory check-symbols
 	@$(MAKE) --no-print-directory check-switches
+	@$(MAKE) --no-print-directory check-cross
 	@$(MAKE) --no-print-directory unit
 	@$(MAKE) --no-print-directory readme-test
 	@$(MAKE) --no-print-directory cli-test

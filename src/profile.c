@@ -32,12 +32,12 @@ static const char *const cr_phase_names[CAROM_PHASE_COUNT] = {
 
 const char *carom_op_name(carom_op op)
 {
-    return (int)op >= 0 && op < CAROM_OP_COUNT ? cr_op_names[op] : "unknown";
+    return (unsigned)op < (unsigned)CAROM_OP_COUNT ? cr_op_names[op] : "unknown";
 }
 
 const char *carom_phase_name(carom_phase phase)
 {
-    return (int)phase >= 0 && phase < CAROM_PHASE_COUNT ? cr_phase_names[phase]
+    return (unsigned)phase < (unsigned)CAROM_PHASE_COUNT ? cr_phase_names[phase]
                                                         : "unknown";
 }
 

@@ -36,7 +36,7 @@ static const char *const cr_status_names[CAROM_STATUS_COUNT] = {
 
 const char *carom_status_string(carom_status status)
 {
-    if ((int)status < 0 || status >= CAROM_STATUS_COUNT)
+    if ((unsigned)status >= (unsigned)CAROM_STATUS_COUNT)
         return "unknown status";
     return cr_status_names[status];
 }
@@ -49,7 +49,7 @@ static const char *const cr_method_names[CAROM_METHOD_COUNT] = {
 
 const char *carom_method_name(carom_method method)
 {
-    if ((int)method < 0 || method >= CAROM_METHOD_COUNT)
+    if ((unsigned)method >= (unsigned)CAROM_METHOD_COUNT)
         return "unknown";
     return cr_method_names[method];
 }

@@ -40,7 +40,7 @@ carom_world_def carom_default_world_def(void)
 
 static carom_status cr_method_available(carom_method m)
 {
-    if ((int)m < 0 || m >= CAROM_METHOD_COUNT)
+    if ((unsigned)m >= (unsigned)CAROM_METHOD_COUNT)
         return CAROM_ERR_BAD_METHOD;
 #if !CAROM_ENABLE_EVENTS
     if (m != CAROM_METHOD_DISCRETE)

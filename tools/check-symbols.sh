@@ -7,10 +7,12 @@
 set -eu
 lib="$1"
 [ -f "$lib" ] || { echo "check-symbols: no such archive: $lib" >&2; exit 2; }
+nm=nm
+case "$lib" in *m4f*|*arm*) nm=arm-none-eabi-nm ;; esac
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-nm -g --defined-only "$lib" | awk 'NF == 3 {print $3}' | sort -u > "$tmp/defined"
-nm -u "$lib" | awk '$1 == "U" {print $2}' | sort -u > "$tmp/needed"
+$nm -g --defined-only "$lib" | awk 'NF == 3 {print $3}' | sort -u > "$tmp/defined"
+$nm -u "$lib" | awk '$1 == "U" {print $2}' | sort -u > "$tmp/needed"
 undef=$(comm -23 "$tmp/needed" "$tmp/defined")
 # memcpy/memset may be emitted by the compiler for struct copies; strcmp
 # looks up method names.
@@ -26,7 +28,7 @@ if [ -n "$bad" ]; then
     exit 1
 fi
 echo "check-symbols: ok: $lib needs only: $(echo $undef)"
-if nm "$lib" | grep -q 'carom__op_row'; then
+if $nm "$lib" | grep -q 'carom__op_row'; then
     echo "check-symbols: FAIL: $lib contains the op counter (carom__op_row): the default build must not count" >&2
     exit 1
 fi
