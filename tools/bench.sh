@@ -15,6 +15,7 @@ mkdir -p "$out"
 cflags="-std=c99 -pedantic -Wall -Wextra -Werror -Wdouble-promotion -ffp-contract=off -O2"
 variant() { # name flags
     make -s BUILD="$out/$1" lib CAROM_FLAGS="$2" >/dev/null
+    # shellcheck disable=SC2086 # flag lists are words
     $cc $cflags -D_POSIX_C_SOURCE=200809L -Iinclude -Itools $2 tools/bench_profile.c \
         tools/scene.c "$out/$1/libcarom.a" -lm -o "$out/bench-$1"
 }

@@ -32,6 +32,7 @@ if ! command -v apt-get >/dev/null 2>&1; then
     exit 1
 fi
 echo "installing:$pkgs" >&2
+# shellcheck disable=SC2086 # $pkgs is a list of package names
 for attempt in 1 2; do
     if $sudo apt-get update -qq && \
        DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq $pkgs >/dev/null; then
