@@ -276,7 +276,8 @@ const char *carom_method_name(carom_method method);
  * Reading results
  * ====================================================================== */
 
-/** Simulated time (s): steps taken times dt, accumulated in float. */
+/** Simulated time (s): steps taken times dt (one float product, so it does
+ * not drift the way a running sum would). */
 float carom_world_time(const carom_world *w);
 long carom_world_step_count(const carom_world *w);
 
@@ -320,7 +321,9 @@ typedef enum carom_phase {
     CAROM_PHASE_COUNT
 } carom_phase;
 
-/** Counters; the caller owns it, resets it, and attaches it to a world. */
+/** Counters; the caller owns it, resets it, and attaches it to a world.
+ * They accumulate over the steps taken while attached: reset before a step
+ * to read that step's counts, or divide by steps for the average. */
 typedef struct carom_profile {
     uint64_t ops[CAROM_PHASE_COUNT][CAROM_OP_COUNT];
     uint64_t steps;      /**< steps taken while attached */
