@@ -60,7 +60,7 @@ $(BUILD)/tools/carom_cli.o: tools/carom_cli.c $(wildcard tools/*.h include/*.h) 
 	$(CC) $(CPPFLAGS) $(PROF_FLAGS) $(TOOL_CFLAGS) -c $< -o $@
 
 $(CLI): $(BUILD)/tools/carom_cli.o $(TOOL_OBJ) $(PROF_LIB)
-	$(CC) $^ -o $@ -lm
+	$(CC) $(OPT) $(LDFLAGS) $^ -o $@ -lm
 
 $(BUILD)/obj $(BUILD)/tools $(BUILD)/tests $(BUILD)/profile/obj:
 	mkdir -p $@
@@ -72,13 +72,13 @@ deps:
 
 $(TEST_BIN): $(TEST_SRC) tests/test_util.h $(TOOL_OBJ) $(LIB) | $(BUILD)/tests
 	$(CC) $(CPPFLAGS) -Isrc $(TOOL_CFLAGS) -Wno-double-promotion $(CHECK_CFLAGS) \
-	    $(TEST_SRC) $(TOOL_OBJ) $(LIB) -o $@ $(CHECK_LIBS) -lm
+	    $(TEST_SRC) $(TOOL_OBJ) $(LIB) -o $@ $(LDFLAGS) $(CHECK_LIBS) -lm
 
 # The whole suite again against the profiling build: same results, plus the
 # exact operation counts of tests/test_profile.c.
 $(TEST_BIN)_profile: $(TEST_SRC) tests/test_util.h $(TOOL_OBJ) $(PROF_LIB) | $(BUILD)/tests
 	$(CC) $(CPPFLAGS) $(PROF_FLAGS) -Isrc $(TOOL_CFLAGS) -Wno-double-promotion $(CHECK_CFLAGS) \
-	    $(TEST_SRC) $(TOOL_OBJ) $(PROF_LIB) -o $@ $(CHECK_LIBS) -lm
+	    $(TEST_SRC) $(TOOL_OBJ) $(PROF_LIB) -o $@ $(LDFLAGS) $(CHECK_LIBS) -lm
 
 unit: deps
 	@$(MAKE) --no-print-directory $(TEST_BIN) $(TEST_BIN)_profile
