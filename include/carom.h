@@ -125,7 +125,9 @@ typedef struct carom_world_def {
     int max_pairs;            /**< broadphase pairs / contacts per step;
                                    0 = CAROM_DEFAULT_PAIRS_PER_BODY *
                                    max_bodies */
-    int max_events;           /**< impacts recorded per step, default 4096 */
+    int max_events;           /**< impacts per step (recorded; processed by
+                                   the events methods); 0 = 8 per body, at
+                                   least 256 */
     float rest_speed;         /**< approach speed (m/s) below which contacts
                                    get no restitution; default 0.5 */
     float linear_slop;        /**< contact distance (m); default 0.0005 */

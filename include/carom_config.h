@@ -71,18 +71,23 @@
                                             times max_bodies */
 #endif
 
-#ifndef CAROM_DEFAULT_MAX_EVENTS
-#define CAROM_DEFAULT_MAX_EVENTS 4096 /**< impacts recorded (and, for the
-                                           events method, processed) per step */
+#ifndef CAROM_DEFAULT_EVENTS_PER_BODY
+#define CAROM_DEFAULT_EVENTS_PER_BODY 8 /**< default event capacity (impacts
+                                             recorded and, for the events
+                                             methods, processed per step) is
+                                             this times max_bodies... */
+#endif
+
+#ifndef CAROM_MIN_EVENTS
+#define CAROM_MIN_EVENTS 256 /**< ...but at least this many */
 #endif
 
 #ifndef CAROM_DEFAULT_REST_SPEED
 #define CAROM_DEFAULT_REST_SPEED 0.5f /**< approach speed (m/s) below which a
                                            contact is resting: restitution is
-                                           not applied. Keep it above a few
-                                           |g| dt so resting bodies do not
-                                           bounce on the speed gravity gives
-                                           them in one step. */
+                                           not applied, so a ball with e < 1
+                                           comes to rest instead of bouncing
+                                           ever lower (docs/physics.md) */
 #endif
 
 #ifndef CAROM_DEFAULT_LINEAR_SLOP

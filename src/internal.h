@@ -184,5 +184,7 @@ void cr_solver_velocities(carom_world *w, int iterations);
 void cr_solver_positions(carom_world *w);
 void cr_solver_store(carom_world *w);
 float cr_solver_impact(carom_world *w, cr_manifold *m, float *approach);
+float cr_effective_approach(const cr_body *a, const cr_body *b, cr_v2 ra,
+                            cr_v2 rb, cr_v2 n, float dt);
 
 #endif /* CAROM_INTERNAL_H */

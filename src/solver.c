@@ -122,6 +122,30 @@ static float cr_resting_fraction(const cr_body *A, const cr_body *B,
 }
 
 /*
+ * Approach speed along n at ra, rb, with last step's resting contact forces
+ * applied to the velocities as they were to the positions (the drift).
+ * The velocities the solver sees leave those forces out, because the solver
+ * applies them itself as impulses; but the approach they cancel is not
+ * motion: a box resting on the ground "approaches" it at |g| dt at the end
+ * of every step, which is no impact however large dt is. A body that was
+ * not resting (no force) keeps its whole approach.
+ */
+static float cr_held(const cr_body *A, const cr_body *B, cr_v2 ra, cr_v2 rb,
+                     cr_v2 n, float dt)
+{
+    cr_v2 ab = cr_vadd(B->acc_c, cr_vcross_sv(B->alpha_c, rb));
+    cr_v2 aa = cr_vadd(A->acc_c, cr_vcross_sv(A->alpha_c, ra));
+    return cr_mul(cr_vdot(cr_vsub(ab, aa), n), dt);
+}
+
+float cr_effective_approach(const cr_body *A, const cr_body *B, cr_v2 ra,
+                            cr_v2 rb, cr_v2 n, float dt)
+{
+    return cr_sub(cr_neg(cr_vdot(cr_relative_velocity(A, B, ra, rb), n)),
+                  cr_held(A, B, ra, rb, n, dt));
+}
+
+/*
  * Approach speed at the instant of contact. The overlap-based step finds
  * an impact only after the bodies have moved a depth d = -sep past it,
  * still accelerating towards each other at a_close, so the speed at the
@@ -131,9 +155,10 @@ static float cr_resting_fraction(const cr_body *A, const cr_body *B,
  * the kinetic energy after the bounce is exactly (e v_c)^2 m / 2.
  */
 static float cr_contact_speed(const cr_body *A, const cr_body *B,
-                              const cr_point *p, cr_v2 n)
+                              const cr_point *p, cr_v2 n, float dt)
 {
-    float v = cr_neg(p->vn0), depth = cr_neg(p->sep), a_close, v2;
+    float v = cr_sub(cr_neg(p->vn0), cr_held(A, B, p->ra, p->rb, n, dt));
+    float depth = cr_neg(p->sep), a_close, v2;
     cr_v2 ab, aa;
     if (!cr_gt(v, 0.0f))
         return 0.0f;
@@ -199,7 +224,7 @@ static void cr_prepare_manifold(carom_world *w, cr_manifold *m,
         p->mass_n = cr_effective_mass(A, B, p->rna, p->rnb);
         p->mass_t = cr_effective_mass(A, B, p->rta, p->rtb);
         p->vn0 = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
-        p->approach = cr_contact_speed(A, B, p, m->n);
+        p->approach = cr_contact_speed(A, B, p, m->n, w->def.dt);
         p->target = !resting_only && cr_gt(p->approach, rest)
                         ? cr_mul(m->restitution, p->approach)
                         : 0.0f;

@@ -28,7 +28,7 @@ carom_world_def carom_default_world_def(void)
 #endif
     d.max_bodies = CAROM_DEFAULT_MAX_BODIES;
     d.max_pairs = 0;
-    d.max_events = CAROM_DEFAULT_MAX_EVENTS;
+    d.max_events = 0; /* CAROM_DEFAULT_EVENTS_PER_BODY per body */
     d.rest_speed = CAROM_DEFAULT_REST_SPEED;
     d.linear_slop = CAROM_DEFAULT_LINEAR_SLOP;
     d.velocity_iterations = CAROM_DEFAULT_VELOCITY_ITERATIONS;
@@ -61,7 +61,7 @@ carom_status carom_world_def_validate(const carom_world_def *d)
         return CAROM_ERR_BAD_DT;
     if (d->max_bodies <= 0 || d->max_bodies > CR_MAX_CAPACITY ||
         d->max_pairs < 0 || d->max_pairs > CR_MAX_CAPACITY ||
-        d->max_events <= 0 || d->max_events > CR_MAX_CAPACITY)
+        d->max_events < 0 || d->max_events > CR_MAX_CAPACITY)
         return CAROM_ERR_BAD_CAPACITY;
     if (cr_lt(d->rest_speed, 0.0f) || cr_lt(d->linear_slop, 0.0f) ||
         d->velocity_iterations < 0 || d->position_iterations < 0 ||
@@ -84,6 +84,14 @@ typedef struct cr_layout {
 
 static size_t cr_round_up(size_t n) { return (n + CR_ALIGN - 1u) & ~(size_t)(CR_ALIGN - 1u); }
 
+static int cr_event_capacity(const carom_world_def *d)
+{
+    int n = CAROM_DEFAULT_EVENTS_PER_BODY * d->max_bodies;
+    if (d->max_events > 0)
+        return d->max_events;
+    return n > CAROM_MIN_EVENTS ? n : CAROM_MIN_EVENTS;
+}
+
 static int cr_pair_capacity(const carom_world_def *d)
 {
     return d->max_pairs > 0 ? d->max_pairs
@@ -95,7 +103,7 @@ static int cr_pair_capacity(const carom_world_def *d)
 static int cr_layout_of(const carom_world_def *d, cr_layout *l)
 {
     size_t nb = (size_t)d->max_bodies, np = (size_t)cr_pair_capacity(d);
-    size_t ne = (size_t)d->max_events, at = 0;
+    size_t ne = (size_t)cr_event_capacity(d), at = 0;
     const size_t limit = (size_t)-1 / 4u;
     if (np > limit / sizeof(cr_manifold) || nb > limit / sizeof(cr_body) ||
         ne > limit / sizeof(carom_event))
@@ -153,6 +161,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w = (carom_world *)(void *)(base + l.world);
     w->def = *def;
     w->def.max_pairs = cr_pair_capacity(def);
+    w->def.max_events = cr_event_capacity(def);
     w->method = def->method;
     w->steps = 0;
     w->bodies = (cr_body *)(void *)(base + l.bodies);
@@ -288,11 +297,15 @@ carom_method carom_world_get_method(const carom_world *w)
 /* ---- the step ------------------------------------------------------------------ */
 
 /*
- * Events methods: a contact approaching faster than rest_speed at the end of
- * the step is an impact (one whose instant fell at the step boundary, or
- * one the event cap left over). The end-of-step solver leaves it alone; the
- * next step's event loop finds the pair touching and approaching and takes
- * the impact at its start, in time order with the others.
+ * Events methods: a contact still approaching faster than rest_speed at the
+ * end of the step is an impact (one whose instant fell at the step
+ * boundary, or one the event cap left over). The end-of-step solver leaves
+ * it alone; the next step's event loop finds the pair touching and
+ * approaching and takes the impact at its start, in time order with the
+ * others. The approach is judged with the resting forces applied
+ * (cr_effective_approach): the |g| dt a resting body "approaches" its
+ * support by at the end of a step is a resting force's to cancel, not an
+ * impact to defer, however large dt is.
  */
 static void cr_defer_impacts(carom_world *w)
 {
@@ -303,9 +316,7 @@ static void cr_defer_impacts(carom_world *w)
         int impact = 0;
         for (k = 0; k < m->count; ++k) {
             cr_v2 ra = cr_vsub(m->pts[k].p, A->x), rb = cr_vsub(m->pts[k].p, B->x);
-            cr_v2 vb = cr_vadd(B->vel, cr_vcross_sv(B->w, rb));
-            cr_v2 va = cr_vadd(A->vel, cr_vcross_sv(A->w, ra));
-            impact |= cr_gt(cr_neg(cr_vdot(cr_vsub(vb, va), m->n)),
+            impact |= cr_gt(cr_effective_approach(A, B, ra, rb, m->n, w->def.dt),
                             w->def.rest_speed);
         }
         if (!impact)

@@ -447,6 +447,29 @@ START_TEST(test_events_method_keeps_stacks_standing_and_balls_settling)
 }
 END_TEST
 
+/* With |g| dt (0.6 m/s) above rest_speed (0.5), a ball resting on the
+ * ground must still rest, under both methods: the approach the step's
+ * gravity kick gives it is the resting force's to cancel, not an impact
+ * (it used to be deferred as one under events, and the ball sank). */
+START_TEST(test_ball_rests_even_when_g_dt_exceeds_rest_speed)
+{
+    carom_method methods[2] = {CAROM_METHOD_EVENTS, CAROM_METHOD_DISCRETE};
+    int m;
+    for (m = 0; m < 2; ++m) {
+        carom_world_def wd = def_for(methods[m], -10.0f, 0.06f, 2);
+        tw t = tw_make(&wd);
+        int ball;
+        add_static_box(&t, 5.0f, 0.5f, 0.0f, -0.5f, 0.0f);
+        ball = add_circle(&t, 0.25f, 0.0f, 0.25f, 0.0f, 0.0f, 0.5f);
+        tw_steps(&t, 50);
+        ck_assert_close(tw_state(&t, ball).position.y, 0.25, 1e-4);
+        ck_assert_msg(fabs(tw_state(&t, ball).velocity.y) < 1e-4, "%s: v = %g",
+                      carom_method_name(methods[m]), (double)tw_state(&t, ball).velocity.y);
+        tw_free(&t);
+    }
+}
+END_TEST
+
 Suite *suite_events(void)
 {
     Suite *s = suite_create("events");
@@ -466,6 +489,7 @@ Suite *suite_events(void)
     tcase_add_test(to, test_row_of_touching_balls_passes_the_impulse_along_in_order);
     tcase_add_test(to, test_event_cap_is_reported_and_bodies_stay_ordered);
     tcase_add_test(to, test_events_method_keeps_stacks_standing_and_balls_settling);
+    tcase_add_test(to, test_ball_rests_even_when_g_dt_exceeds_rest_speed);
     suite_add_tcase(s, tn);
     suite_add_tcase(s, tc);
     suite_add_tcase(s, to);
