@@ -32,9 +32,14 @@ CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
 
 SCENE ?= tools/scenes/default.scene
 
-.PHONY: check-cross bench all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
+# Validation against Box2D 2.4.1 and timing (tools/box2d.mk): box2d,
+# validate, bench-box2d. `make` builds build/carom-box2d when Box2D is here.
+include tools/box2d.mk
+HAVE_BOX2D := $(shell pkg-config --exists box2d 2>/dev/null && echo yes)
 
-all: $(LIB) $(CLI)
+.PHONY: validate-check check-cross bench all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
+
+all: $(LIB) $(CLI) $(if $(HAVE_BOX2D),$(BOX2D_BIN))
 
 lib: $(LIB)
 cli: $(CLI)
@@ -107,13 +112,23 @@ check-cross:
 check-switches:
 	sh tools/check-switches.sh
 
+# The validation suite's checks (agreement within tolerance), with the
+# report and figure written under build/ so that checking leaves docs/ as
+# it is; `make validate` regenerates docs/validation.md.
+validate-check: $(CLI) $(BOX2D_BIN)
+	@sh tools/ensure-deps.sh plot
+	sh tools/validate.sh --carom $(CLI) --box2d $(BOX2D_BIN) \
+	    --out $(BUILD)/validation.md --figure $(BUILD)/validation-bounce.png
+
 check: deps
+	@sh tools/ensure-deps.sh box2d plot
 	@$(MAKE) --no-print-directory all
 	@$(MAKE) --no-print-directory check-symbols
 	@$(MAKE) --no-print-directory check-switches
 	@$(MAKE) --no-print-directory check-cross
 	@$(MAKE) --no-print-directory unit
 	@$(MAKE) --no-print-directory readme-test
+	@$(MAKE) --no-print-directory validate-check
 	@$(MAKE) --no-print-directory cli-test
 
 # ---- the main job -----------------------------------------------------------
@@ -132,4 +147,6 @@ help:
 	@echo "make            build $(LIB) and $(CLI)"
 	@echo "make check      unit tests (Check), symbol check, CLI tests"
 	@echo "make run        run $(SCENE) and summarise it"
+	@echo "make validate   carom against Box2D: docs/validation.md"
+	@echo "make bench      profiler overhead; make bench-box2d: carom vs Box2D timing"
 	@echo "make clean      remove $(BUILD)/"

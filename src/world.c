@@ -297,9 +297,12 @@ carom_method carom_world_get_method(const carom_world *w)
 /* ---- the step ------------------------------------------------------------------ */
 
 /*
- * Events methods: a contact still approaching faster than rest_speed at the
- * end of the step is an impact (one whose instant fell at the step
- * boundary, or one the event cap left over). The end-of-step solver leaves
+ * Events methods: a contact that was approaching faster than rest_speed
+ * before this step's force kick and still is at its end is an impact (one
+ * whose instant fell at the step boundary, or one the event cap left
+ * over). A slow arrival (slower than rest_speed at contact, so not an
+ * event) that the kick pushed past rest_speed by the end of the step is a
+ * landing, for the solver. The end-of-step solver leaves
  * it alone; the next step's event loop finds the pair touching and
  * approaching and takes the impact at its start, in time order with the
  * others. The approach is judged with the resting forces applied
@@ -316,7 +319,13 @@ static void cr_defer_impacts(carom_world *w)
         int impact = 0;
         for (k = 0; k < m->count; ++k) {
             cr_v2 ra = cr_vsub(m->pts[k].p, A->x), rb = cr_vsub(m->pts[k].p, B->x);
-            impact |= cr_gt(cr_effective_approach(A, B, ra, rb, m->n, w->def.dt),
+            /* approach before this step's kick (start of step, or just
+             * after the bodies' last impact) */
+            cr_v2 vb = cr_vadd(B->vel_saved, cr_vcross_sv(B->w_saved, rb));
+            cr_v2 va = cr_vadd(A->vel_saved, cr_vcross_sv(A->w_saved, ra));
+            float before = cr_neg(cr_vdot(cr_vsub(vb, va), m->n));
+            impact |= cr_gt(before, w->def.rest_speed) &&
+                      cr_gt(cr_effective_approach(A, B, ra, rb, m->n, w->def.dt),
                             w->def.rest_speed);
         }
         if (!impact)

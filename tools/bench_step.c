@@ -10,6 +10,8 @@
  *
  *   steps=N bodies=B ns_per_step=X impacts=I
  *
+ * (impacts: carom_world_get_stats, over the warm-up and the timed steps)
+ *
  * Used by tools/bench-box2d.sh next to `carom-box2d run --time`.
  * Exit status: 0 ok, 1 the simulation reported an error, 2 bad usage/scene.
  */

@@ -61,8 +61,11 @@ const char usage[] =
     "  --events FILE              every contact that begins touching faster than\n"
     "                             the rest speed, one row per contact and step:\n"
     "                             t,body_a,body_b,nx,ny,impulse,approach_speed\n"
-    "                             (t = end of the step; approach speed from the\n"
-    "                             velocities when Box2D first finds the contact;\n"
+    "                             (t = end of the step; approach_speed = the\n"
+    "                             relative normal velocity Box2D's restitution\n"
+    "                             test uses: at the start of the step with the\n"
+    "                             step's gravity and force kick, or when\n"
+    "                             continuous collision finds the contact;\n"
     "                             impulse = total normal impulse of that step)\n"
     "  --masses FILE              carom's and Box2D's mass properties per body:\n"
     "                             body,carom_mass,box2d_mass,carom_inertia,\n"
@@ -123,33 +126,65 @@ struct pending_event {
     double impulse;     /* sum of normal impulses reported this step */
 };
 
+/* Each body's state at the start of the step and the velocity change the
+ * step's gravity and constant force give it before Box2D solves contacts
+ * (b2Island::Solve integrates velocities first). */
+struct body_snapshot {
+    b2Vec2 p, v;
+    float angle, w;
+    b2Vec2 kick_v;
+    float kick_w;
+};
+
 class event_listener : public b2ContactListener {
 public:
     float rest_speed = 0.5f;
     std::vector<pending_event> pending;
+    std::vector<body_snapshot> snap;
 
     static int id_of(b2Body *b)
     {
         return (int)b->GetUserData().pointer;
     }
 
+    /* The velocity Box2D's contact solver starts from: for a contact found
+     * at the start of the step (the body has not moved yet), the body's
+     * velocity plus this step's kick; for one found later by continuous
+     * collision, the velocity it has then. */
+    void solver_velocity(b2Body *b, b2Vec2 *v, float *w) const
+    {
+        const body_snapshot &s = snap[(size_t)id_of(b)];
+        *v = b->GetLinearVelocity();
+        *w = b->GetAngularVelocity();
+        if (b->GetPosition() == s.p && b->GetAngle() == s.angle && *v == s.v && *w == s.w) {
+            *v += s.kick_v;
+            *w += s.kick_w;
+        }
+    }
+
     /* PreSolve runs for every touching contact before it is solved; a
-     * contact whose old manifold is empty has just begun touching. */
+     * contact whose old manifold is empty has just begun touching. The
+     * approach speed is the one Box2D's restitution test uses: the largest
+     * relative normal velocity at the manifold points. */
     void PreSolve(b2Contact *contact, const b2Manifold *old) override
     {
         const b2Manifold *m = contact->GetManifold();
-        if (old->pointCount != 0 || m->pointCount == 0)
+        if (old->pointCount != 0 || m->pointCount == 0 || snap.empty())
             return;
         b2Body *ba = contact->GetFixtureA()->GetBody();
         b2Body *bb = contact->GetFixtureB()->GetBody();
         b2WorldManifold wm;
         contact->GetWorldManifold(&wm);
+        b2Vec2 va, vb;
+        float wa, wb;
+        solver_velocity(ba, &va, &wa);
+        solver_velocity(bb, &vb, &wb);
+        const b2Vec2 ca = ba->GetWorldCenter(), cb = bb->GetWorldCenter();
         double approach = 0.0;
         for (int i = 0; i < m->pointCount; ++i) {
-            b2Vec2 p = wm.points[i];
-            b2Vec2 dv = bb->GetLinearVelocityFromWorldPoint(p) -
-                        ba->GetLinearVelocityFromWorldPoint(p);
-            double vn = (double)dv.x * wm.normal.x + (double)dv.y * wm.normal.y;
+            const b2Vec2 p = wm.points[i];
+            const b2Vec2 dv = vb + b2Cross(wb, p - cb) - va - b2Cross(wa, p - ca);
+            const double vn = (double)dv.x * wm.normal.x + (double)dv.y * wm.normal.y;
             approach = std::max(approach, -vn);
         }
         if (!(approach > (double)rest_speed))
@@ -277,6 +312,36 @@ struct options {
     bool quiet = false;
 };
 
+/* What the listener needs to know of the start of a step. Constant forces
+ * have been applied already (GetMass etc. are public; the force is not, so
+ * the kick of a body's constant force comes from the scene). */
+const scene *g_scene = nullptr;
+
+void take_snapshot(std::vector<body_snapshot> &snap, const std::vector<b2Body *> &bodies,
+                   b2Vec2 gravity, float dt)
+{
+    snap.resize(bodies.size());
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        b2Body *b = bodies[i];
+        body_snapshot &s = snap[i];
+        s.p = b->GetPosition();
+        s.angle = b->GetAngle();
+        s.v = b->GetLinearVelocity();
+        s.w = b->GetAngularVelocity();
+        s.kick_v.SetZero();
+        s.kick_w = 0.0f;
+        if (b->GetType() == b2_dynamicBody && b->GetMass() > 0.0f) {
+            const carom_body_def &d = g_scene->bodies[i].def;
+            const float inv_m = 1.0f / b->GetMass();
+            s.kick_v = dt * (b->GetGravityScale() * gravity + inv_m * b2Vec2(d.force.x, d.force.y));
+            /* GetInertia is about the origin; Box2D's invI is about the centre */
+            const b2Vec2 lc = b->GetLocalCenter();
+            const float ic = b->GetInertia() - b->GetMass() * b2Dot(lc, lc);
+            s.kick_w = ic > 0.0f ? dt * d.torque / ic : 0.0f;
+        }
+    }
+}
+
 FILE *open_out(const char *path)
 {
     FILE *f = std::fopen(path, "w");
@@ -350,8 +415,8 @@ int cmd_run(int argc, char **argv)
                     !(o.dt > 0.0) || o.dt > 1.0e30)
                     return usage_error("--dt: want a finite number > 0, got '%s'", v);
             } else if (!std::strcmp(a, "--velocity-iterations")) {
-                if (!parse_long(v, 1, 1000, &o.vel_iters))
-                    return usage_error("--velocity-iterations: want an integer in [1, 1000], got '%s'", v);
+                if (!parse_long(v, 0, 1000, &o.vel_iters))
+                    return usage_error("--velocity-iterations: want an integer in [0, 1000], got '%s'", v);
             } else if (!std::strcmp(a, "--position-iterations")) {
                 if (!parse_long(v, 0, 1000, &o.pos_iters))
                     return usage_error("--position-iterations: want an integer in [0, 1000], got '%s'", v);
@@ -388,6 +453,7 @@ int cmd_run(int argc, char **argv)
     if (o.pos_iters >= 0)
         s.world.position_iterations = (int)o.pos_iters;
     const char *path = o.scene_path;
+    g_scene = &s;
 
     /* The carom world: the same checks as build/carom, and the reference
      * mass properties. */
@@ -398,13 +464,6 @@ int cmd_run(int argc, char **argv)
         scene_free(&s);
         return EXIT_USAGE;
     }
-    if (s.world.velocity_iterations < 1) {
-        std::fprintf(stderr, "carom-box2d: %s: velocity-iterations=0: Box2D needs at least 1 "
-                     "velocity iteration to resolve contacts\n", path);
-        std::free(cmem);
-        scene_free(&s);
-        return EXIT_USAGE;
-    }
 
     const float dt = s.world.dt;
     const float rest = s.world.rest_speed;
@@ -412,7 +471,8 @@ int cmd_run(int argc, char **argv)
     world.SetAllowSleeping(false);
     event_listener listener;
     listener.rest_speed = rest;
-    world.SetContactListener(&listener);
+    if (o.events_path)
+        world.SetContactListener(&listener);
 
     std::vector<b2Body *> bodies;
     bool any_polygon = false;
@@ -491,9 +551,13 @@ int cmd_run(int argc, char **argv)
                      "%g m (compiled in); the scene's slop=%g m is not used\n",
                      (double)b2_linearSlop, (double)s.world.linear_slop);
         if (any_polygon)
-            std::fprintf(stderr, "carom-box2d: note: Box2D keeps polygons b2_polygonRadius "
-                         "= %g m apart (a skin on every polygon); thinnest polygon: body "
-                         "%d, %.4g m wide\n", (double)b2_polygonRadius, thinnest_id, thinnest);
+            std::fprintf(stderr, "carom-box2d: note: every Box2D polygon has a skin of b2_polygonRadius "
+                         "= %g m (it collides as if that much larger all round); thinnest polygon: body "
+                         "%d, %.4g m wide%s\n", (double)b2_polygonRadius, thinnest_id, thinnest,
+                         thinnest < 2.0 * b2_polygonRadius
+                             ? " (less than twice the skin: Box2D's collision shape is more "
+                               "than twice as thick)"
+                             : "");
     }
 
     if (o.masses_path) {
@@ -559,6 +623,8 @@ int cmd_run(int argc, char **argv)
                 bodies[i]->ApplyTorque(d.torque, true);
         }
         listener.pending.clear();
+        if (events)
+            take_snapshot(listener.snap, bodies, world.GetGravity(), dt);
         world.Step(dt, vel_iters, pos_iters);
         if (o.timing)
             spent += now_ns() - t0;
