@@ -58,10 +58,9 @@ START_TEST(test_note_example2_contact_at_two_thirds_of_the_step)
     int i;
     for (i = 0; i < 3; ++i) {
         double cr = crs[i];
-        carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 1.0f, 2);
-        tw t = tw_make(&wd);
-        int a = add_circle(&t, 1.0f, -2.0f, 0.0f, 2.0f, 0.0f, (float)cr);
-        int b = add_circle(&t, 1.0f, 2.0f, 0.0f, -1.0f, 0.0f, (float)cr);
+        tw t = tw_pair(CAROM_METHOD_EVENTS, 1.0f, CAROM_DEFAULT_REST_SPEED, 1.0f,
+                       (float)cr, 0.0f, -2.0f, 2.0f, 0.0f, 2.0f, -1.0f);
+        int a = 0, b = 1;
         const carom_event *ev;
         int n;
         tw_steps(&t, 1);
@@ -82,10 +81,9 @@ END_TEST
  * must give the same answer as events. */
 START_TEST(test_first_impact_method_matches_events_on_a_single_impact)
 {
-    carom_world_def wd = def_for(CAROM_METHOD_FIRST_IMPACT, 0.0f, 1.0f, 2);
-    tw t = tw_make(&wd);
-    int a = add_circle(&t, 1.0f, -2.0f, 0.0f, 2.0f, 0.0f, 0.5f);
-    int b = add_circle(&t, 1.0f, 2.0f, 0.0f, -1.0f, 0.0f, 0.5f);
+    tw t = tw_pair(CAROM_METHOD_FIRST_IMPACT, 1.0f, CAROM_DEFAULT_REST_SPEED, 1.0f,
+                   0.5f, 0.0f, -2.0f, 2.0f, 0.0f, 2.0f, -1.0f);
+    int a = 0, b = 1;
     tw_steps(&t, 1);
     ck_assert_close(tw_state(&t, a).position.x, -1.0 + 1.25 - 1.0, 1e-6);
     ck_assert_close(tw_state(&t, a).velocity.x, -0.25, 1e-6);
@@ -110,23 +108,9 @@ START_TEST(test_discrete_position_error_matches_derivation_and_never_decays)
     double xa[2][2];
     int m, k;
     for (m = 0; m < 2; ++m) {
-        carom_world_def wd = def_for(methods[m], 0.0f, (float)dt, 2);
-        carom_body_def bd = carom_default_body_def();
-        tw t = tw_make(&wd);
-        int a, b;
-        bd.radius = 0.5f;
-        bd.friction = 0.0f;
-        bd.restitution = (float)e;
-        bd.mass = (float)ma;
-        bd.position.x = -0.5f - (float)gap;
-        bd.velocity.x = (float)va;
-        a = tw_add(&t, &bd);
-        bd.mass = (float)mb;
-        bd.position.x = 0.5f;
-        bd.velocity.x = (float)vb;
-        b = tw_add(&t, &bd);
-        (void)b;
-        wd.rest_speed = 0.0f;
+        tw t = tw_pair(methods[m], (float)dt, 0.0f, 0.5f, (float)e, (float)ma,
+                       (float)(-0.5 - gap), (float)va, (float)mb, 0.5f, (float)vb);
+        int a = 0;
         tw_steps(&t, 1);
         xa[m][0] = tw_state(&t, a).position.x;
         tw_steps(&t, 20);

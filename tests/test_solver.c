@@ -13,30 +13,13 @@
 static void head_on(double ma, double mb, double va, double vb, double e,
                     double *va1, double *vb1)
 {
-    carom_world_def wd = carom_default_world_def();
-    carom_body_def bd = carom_default_body_def();
-    tw t;
-    int a, b;
-    wd.gravity.y = 0.0f;
-    wd.dt = 1.0f;
-    wd.rest_speed = 0.0f;
-    wd.max_bodies = 2;
-    t = tw_make(&wd);
-    bd.radius = 0.5f;
-    bd.friction = 0.0f;
-    bd.restitution = (float)e;
-    bd.mass = (float)ma;
-    bd.position.x = (float)(-0.5 - va);
-    bd.velocity.x = (float)va;
-    a = tw_add(&t, &bd);
-    bd.mass = (float)mb;
-    bd.position.x = (float)(0.5 - vb);
-    bd.velocity.x = (float)vb;
-    b = tw_add(&t, &bd);
+    tw t = tw_pair(CAROM_METHOD_DISCRETE, 1.0f, 0.0f, 0.5f, (float)e, (float)ma,
+                   (float)(-0.5 - va), (float)va, (float)mb, (float)(0.5 - vb),
+                   (float)vb);
     tw_steps(&t, 1);
-    *va1 = tw_state(&t, a).velocity.x;
-    *vb1 = tw_state(&t, b).velocity.x;
-    ck_assert_close(tw_state(&t, a).velocity.y, 0.0, 1e-7);
+    *va1 = tw_state(&t, 0).velocity.x;
+    *vb1 = tw_state(&t, 1).velocity.x;
+    ck_assert_close(tw_state(&t, 0).velocity.y, 0.0, 1e-7);
     tw_free(&t);
 }
 
@@ -142,23 +125,9 @@ START_TEST(test_note_stepping_example1_contact_on_step_boundary)
     int i;
     for (i = 0; i < 3; ++i) {
         double cr = crs[i];
-        carom_world_def wd = carom_default_world_def();
-        carom_body_def bd = carom_default_body_def();
-        tw t;
-        int a, b;
-        wd.gravity.y = 0.0f;
-        wd.dt = 1.0f;
-        wd.max_bodies = 2;
-        t = tw_make(&wd);
-        bd.radius = 1.0f;
-        bd.friction = 0.0f;
-        bd.restitution = (float)cr;
-        bd.position.x = -2.0f;
-        bd.velocity.x = 1.0f;
-        a = tw_add(&t, &bd);
-        bd.position.x = 2.0f;
-        bd.velocity.x = -1.0f;
-        b = tw_add(&t, &bd);
+        tw t = tw_pair(CAROM_METHOD_DISCRETE, 1.0f, CAROM_DEFAULT_REST_SPEED,
+                       1.0f, (float)cr, 0.0f, -2.0f, 1.0f, 0.0f, 2.0f, -1.0f);
+        int a = 0, b = 1;
         tw_steps(&t, 1);
         ck_assert_close(tw_state(&t, a).position.x, -1.0, 1e-6);
         ck_assert_close(tw_state(&t, b).position.x, 1.0, 1e-6);

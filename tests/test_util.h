@@ -62,6 +62,38 @@ static inline void tw_steps(tw *t, int n)
     }
 }
 
+/*
+ * Two frictionless circles of radius r on the x axis, no gravity: A at xa
+ * moving at va, B at xb moving at vb, restitution e, masses ma and mb (0:
+ * from the default density). Bodies 0 and 1 of the returned world.
+ */
+static inline tw tw_pair(carom_method method, float dt, float rest_speed,
+                         float r, float e, float ma, float xa, float va,
+                         float mb, float xb, float vb)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    wd.method = method;
+    wd.gravity.y = 0.0f;
+    wd.dt = dt;
+    wd.rest_speed = rest_speed;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    bd.radius = r;
+    bd.friction = 0.0f;
+    bd.restitution = e;
+    bd.mass = ma;
+    bd.position.x = xa;
+    bd.velocity.x = va;
+    tw_add(&t, &bd);
+    bd.mass = mb;
+    bd.position.x = xb;
+    bd.velocity.x = vb;
+    tw_add(&t, &bd);
+    return t;
+}
+
 /* |a - b| <= tol * max(1, |b|) */
 #define ck_assert_close(a, b, tol)                                             \
     do {                                                                       \
