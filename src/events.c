@@ -87,17 +87,19 @@ static float cr_pair_next_impact(carom_world *w, int k, float t0)
     if (cr_le(sep, cr_mul(CR_TOUCH_FRACTION, slop))) {
         /* touching now: an impact at once if approaching fast, otherwise a
          * resting contact, left to the solver at the end of the step */
-        return cr_gt(cr_approach_speed_at(A, B, t0, slop), w->def.rest_speed)
+        return cr_gt(cr_approach_speed_at(A, B, t0, slop, dt),
+                     cr_impact_threshold(A, B, w->def.rest_speed))
                    ? t0
                    : CR_NO_IMPACT;
     }
-    if (!cr_time_of_impact(A, B, t0, dt, cr_mul(CAROM_TOI_TOLERANCE, slop), &toi))
+    if (!cr_time_of_impact(A, B, t0, dt, cr_mul(CAROM_TOI_TOLERANCE, slop), dt, &toi))
         return CR_NO_IMPACT;
     /* arriving slower than rest_speed is coming to rest, not an impact:
      * the solver takes it at the end of the step. (Taking such arrivals as
      * impacts would never end where bodies press on each other: each
      * inelastic impulse starts the next approach, an inelastic collapse.) */
-    if (!cr_gt(cr_approach_speed_at(A, B, toi, slop), w->def.rest_speed))
+    if (!cr_gt(cr_approach_speed_at(A, B, toi, slop, dt),
+               cr_impact_threshold(A, B, w->def.rest_speed)))
         return CR_NO_IMPACT;
     return toi;
 }

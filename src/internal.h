@@ -171,9 +171,10 @@ void cr_body_swept_bounds(const cr_body *b, float t0, float t1, float margin,
 int cr_first_down_root2(float c0, float c1, float c2, float hi, float *out);
 int cr_first_root4(const float c[5], float hi, float *out);
 float cr_approach_speed_at(const cr_body *a, const cr_body *b, float t,
-                           float margin);
+                           float margin, float dt);
+float cr_impact_threshold(const cr_body *a, const cr_body *b, float rest_speed);
 int cr_time_of_impact(const cr_body *a, const cr_body *b, float t0, float t1,
-                      float tol, float *toi);
+                      float tol, float dt, float *toi);
 
 /* events.c */
 carom_status cr_step_events(carom_world *w);

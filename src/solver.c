@@ -122,8 +122,9 @@ static float cr_resting_fraction(const cr_body *A, const cr_body *B,
 }
 
 /*
- * Approach speed along n at ra, rb, with last step's resting contact forces
- * applied to the velocities as they were to the positions (the drift).
+ * Approach speed along n at ra, rb at the END of a step, with last step's
+ * resting contact forces applied to the velocities as they were to the
+ * positions (the drift).
  * The velocities the solver sees leave those forces out, because the solver
  * applies them itself as impulses; but the approach they cancel is not
  * motion: a box resting on the ground "approaches" it at |g| dt at the end
@@ -155,9 +156,14 @@ float cr_effective_approach(const cr_body *A, const cr_body *B, cr_v2 ra,
  * the kinetic energy after the bounce is exactly (e v_c)^2 m / 2.
  */
 static float cr_contact_speed(const cr_body *A, const cr_body *B,
-                              const cr_point *p, cr_v2 n, float dt)
+                              const cr_point *p, cr_v2 n, float dt,
+                              int step_end)
 {
-    float v = cr_sub(cr_neg(p->vn0), cr_held(A, B, p->ra, p->rb, n, dt));
+    /* at the end of a step the velocities leave last step's resting forces
+     * out (the solver re-applies them); inside it, at an impact, a body's
+     * velocity on its drift already includes them */
+    float v = step_end ? cr_sub(cr_neg(p->vn0), cr_held(A, B, p->ra, p->rb, n, dt))
+                       : cr_neg(p->vn0);
     float depth = cr_neg(p->sep), a_close, v2;
     cr_v2 ab, aa;
     if (!cr_gt(v, 0.0f))
@@ -201,7 +207,7 @@ static void cr_match_previous(carom_world *w)
 /* Mixing, anchors, effective masses, pre-solve velocities and targets of
  * one manifold. */
 static void cr_prepare_manifold(carom_world *w, cr_manifold *m,
-                                int resting_only)
+                                int resting_only, int step_end)
 {
     int k;
     float rest = w->def.rest_speed;
@@ -224,7 +230,7 @@ static void cr_prepare_manifold(carom_world *w, cr_manifold *m,
         p->mass_n = cr_effective_mass(A, B, p->rna, p->rnb);
         p->mass_t = cr_effective_mass(A, B, p->rta, p->rtb);
         p->vn0 = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
-        p->approach = cr_contact_speed(A, B, p, m->n, w->def.dt);
+        p->approach = cr_contact_speed(A, B, p, m->n, w->def.dt, step_end);
         p->target = !resting_only && cr_gt(p->approach, rest)
                         ? cr_mul(m->restitution, p->approach)
                         : 0.0f;
@@ -277,7 +283,7 @@ void cr_solver_prepare(carom_world *w, int resting_only)
     }
     cr_match_previous(w);
     for (i = 0; i < w->manifold_count; ++i)
-        cr_prepare_manifold(w, &w->manifolds[i], resting_only);
+        cr_prepare_manifold(w, &w->manifolds[i], resting_only, 1);
     /* warm start only now: every vn0 above is a pre-solve velocity */
     for (i = 0; i < w->manifold_count; ++i)
         cr_warm_start(w, &w->manifolds[i]);
@@ -403,7 +409,7 @@ float cr_solver_impact(carom_world *w, cr_manifold *m, float *approach)
         m->pts[k].pn = 0.0f;
         m->pts[k].pt = 0.0f;
     }
-    cr_prepare_manifold(w, m, 0);
+    cr_prepare_manifold(w, m, 0, 0);
     /* without friction the first visit is already exact */
     iterations = cr_gt(m->friction, 0.0f) ? CR_IMPACT_ITERATIONS : 1;
     for (it = 0; it < iterations; ++it)

@@ -33,6 +33,10 @@
 
 #if CAROM_ENABLE_EVENTS
 
+/* Approach below this fraction of the bodies' speeds is rounding, not an
+ * impact (cr_impact_threshold). */
+#define CR_APPROACH_REL_TOL 1.0e-5f
+
 /* Subdivision of the quartic: at most this many interval tests. */
 #define CR_QUARTIC_MAX_EVALS 256
 #define CR_QUARTIC_STACK 48
@@ -364,10 +368,26 @@ static int cr_toi_vertices_edges(const cr_body *A, const cr_body *B, float t0,
 }
 #endif
 
+/*
+ * The approach speed above which a contact of A and B is an impact:
+ * rest_speed, plus CR_APPROACH_REL_TOL of the speeds the bodies' points can
+ * have. Without the second term, with rest_speed 0, an approach at the
+ * rounding level of fast bodies (1e-7 m/s at 16 m/s) would be an impact,
+ * and its impulse would leave another: an endless loop at one instant.
+ */
+float cr_impact_threshold(const cr_body *A, const cr_body *B, float rest_speed)
+{
+    float scale = cr_add(cr_add(cr_vlen(A->vel), cr_vlen(B->vel)),
+                         cr_add(cr_mul(cr_abs(A->w), A->extent),
+                                cr_mul(cr_abs(B->w), B->extent)));
+    return cr_add(rest_speed, cr_mul(CR_APPROACH_REL_TOL, scale));
+}
+
 /* Fastest normal approach of A and B over the points of their manifold at
- * local time t (0 if not within margin of each other). */
+ * local time t inside the step (0 if not within margin of each other). The
+ * velocities on the drift already include the resting forces. */
 float cr_approach_speed_at(const cr_body *A0, const cr_body *B0, float t,
-                           float margin)
+                           float margin, float dt)
 {
     cr_body A = *A0, B = *B0;
     cr_manifold m;
@@ -377,6 +397,7 @@ float cr_approach_speed_at(const cr_body *A0, const cr_body *B0, float t,
     cr_body_sync(&B, t);
     if (!cr_collide(&A, &B, margin, &m))
         return 0.0f;
+    (void)dt;
     for (k = 0; k < m.count; ++k) {
         cr_v2 ra = cr_vsub(m.pts[k].p, A.x), rb = cr_vsub(m.pts[k].p, B.x);
         cr_v2 vb = cr_vadd(B.vel, cr_vcross_sv(B.w, rb));
@@ -399,7 +420,7 @@ static float cr_separation_at(const cr_body *A, const cr_body *B, float t)
 }
 
 static int cr_toi_advance(const cr_body *A, const cr_body *B, float t0,
-                          float t1, float tol, float *out)
+                          float t1, float tol, float dt, float *out)
 {
     int it;
     float t = t0;
@@ -422,7 +443,8 @@ static int cr_toi_advance(const cr_body *A, const cr_body *B, float t0,
         if (cr_le(sep, tol)) {
             /* within tolerance: an impact only if they are closing in;
              * otherwise a graze or a resting contact */
-            if (!cr_gt(cr_approach_speed_at(A, B, t, cr_mul(2.0f, tol)), 0.0f))
+            if (!cr_gt(cr_approach_speed_at(A, B, t, cr_mul(2.0f, tol), dt),
+                       cr_impact_threshold(A, B, 0.0f)))
                 return 0;
             *out = cr_sub(t, t0);
             return 1;
@@ -443,14 +465,16 @@ static int cr_toi_advance(const cr_body *A, const cr_body *B, float t0,
 
 /*
  * First impact of A and B in [t0, t1] (local step time), for bodies that
- * are apart at t0 (separation > tol). Returns 1 and the time in *toi.
+ * are apart at t0 (separation > tol); dt is the step (for the resting
+ * forces' share of an approach). Returns 1 and the time in *toi.
  */
 int cr_time_of_impact(const cr_body *A, const cr_body *B, float t0, float t1,
-                      float tol, float *toi)
+                      float tol, float dt, float *toi)
 {
     float s = 0.0f, hi = cr_sub(t1, t0);
     int hit = 0;
     (void)tol;
+    (void)dt;
     if (!cr_gt(hi, 0.0f))
         return 0;
     if (A->shape == CAROM_SHAPE_CIRCLE && B->shape == CAROM_SHAPE_CIRCLE) {
@@ -460,7 +484,7 @@ int cr_time_of_impact(const cr_body *A, const cr_body *B, float t0, float t1,
     }
 #if CAROM_ENABLE_POLYGONS
     else if (cr_rotates(A) || cr_rotates(B)) {
-        hit = cr_toi_advance(A, B, t0, t1, tol, &s);
+        hit = cr_toi_advance(A, B, t0, t1, tol, dt, &s);
     } else if (A->shape == CAROM_SHAPE_POLYGON && B->shape == CAROM_SHAPE_CIRCLE) {
         hit = cr_toi_circle_polygon(A, B, t0, hi, &s);
     } else if (A->shape == CAROM_SHAPE_CIRCLE) {

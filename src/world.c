@@ -324,9 +324,10 @@ static void cr_defer_impacts(carom_world *w)
             cr_v2 vb = cr_vadd(B->vel_saved, cr_vcross_sv(B->w_saved, rb));
             cr_v2 va = cr_vadd(A->vel_saved, cr_vcross_sv(A->w_saved, ra));
             float before = cr_neg(cr_vdot(cr_vsub(vb, va), m->n));
-            impact |= cr_gt(before, w->def.rest_speed) &&
+            float threshold = cr_impact_threshold(A, B, w->def.rest_speed);
+            impact |= cr_gt(before, threshold) &&
                       cr_gt(cr_effective_approach(A, B, ra, rb, m->n, w->def.dt),
-                            w->def.rest_speed);
+                            threshold);
         }
         if (!impact)
             w->manifolds[kept++] = *m;

@@ -484,12 +484,12 @@ START_TEST(test_toi_circles_head_on_gap_over_closing_speed)
     float toi = -1.0f;
     set_motion(&a, 2, 0, 0, 0, 0);
     set_motion(&b, -1, 0, 0, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, 2.25 / 3.0, 1e-6);
-    ck_assert_int_eq(cr_time_of_impact(&b, &a, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&b, &a, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, 2.25 / 3.0, 1e-6);
     /* not within [0, 0.7] */
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 0.7f, 1e-4f, &toi), 0);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 0.7f, 1e-4f, 1.0f /* dt */, &toi), 0);
 }
 END_TEST
 
@@ -501,10 +501,10 @@ START_TEST(test_toi_is_a_step_time_when_searching_from_a_later_t0)
     float toi = -1.0f;
     set_motion(&a, 2, 0, 0, 0, 0);
     set_motion(&b, -1, 0, 0, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.25f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.25f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, 0.75, 1e-6);
     /* an empty search interval finds nothing */
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 1.0f, 1.0f, 1e-4f, &toi), 0);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 1.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
 }
 END_TEST
 
@@ -517,9 +517,9 @@ START_TEST(test_toi_falling_circle_meets_box_top_face)
     double h = 2.0 - 0.5 - 0.25, e = (-1.0 + sqrt(1.0 + 20.0 * h)) / 10.0;
     float toi = -1.0f;
     set_motion(&ball, 0, -1, 0, 0, -10);
-    ck_assert_int_eq(cr_time_of_impact(&box, &ball, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&box, &ball, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, e, 1e-6);
-    ck_assert_int_eq(cr_time_of_impact(&ball, &box, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&ball, &box, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, e, 1e-6);
 }
 END_TEST
@@ -539,9 +539,9 @@ START_TEST(test_toi_circle_meets_box_corner_at_radius_distance)
     ck_assert(cx > 1.0 && cy > 1.0); /* vertex region */
     ck_assert_close(hypot(cx - 1.0, cy - 1.0), 0.5, 1e-12);
     set_motion(&ball, -2, -0.5, 0, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&box, &ball, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&box, &ball, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, e, 1e-5);
-    ck_assert_int_eq(cr_time_of_impact(&ball, &box, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&ball, &box, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, e, 1e-5);
 }
 END_TEST
@@ -554,9 +554,9 @@ START_TEST(test_toi_falling_box_meets_box_face_with_a_vertex)
     double e = (-1.0 + sqrt(21.0)) / 10.0;
     float toi = -1.0f;
     set_motion(&top, 0, -1, 0, 0, -10);
-    ck_assert_int_eq(cr_time_of_impact(&ground, &top, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&ground, &top, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, e, 1e-6);
-    ck_assert_int_eq(cr_time_of_impact(&top, &ground, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&top, &ground, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, e, 1e-6);
 }
 END_TEST
@@ -586,10 +586,10 @@ START_TEST(test_toi_circles_with_different_accelerations_match_scan)
             e = lo;
         }
     ck_assert_msg(e > 0.0, "the scan finds no contact");
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, e, 1e-5);
     ck_assert_msg(toi <= e + 1e-6, "toi %.9g after the contact %.9g", (double)toi, e);
-    ck_assert_int_eq(cr_time_of_impact(&b, &a, 0.0f, 1.0f, 1e-4f, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&b, &a, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
     ck_assert_close(toi, e, 1e-5);
 }
 END_TEST
@@ -620,7 +620,7 @@ START_TEST(test_toi_projectile_onto_static_circle_is_not_missed)
             e = lo;
         }
     ck_assert_msg(e > 0.0, "the scan finds no contact");
-    ck_assert_msg(cr_time_of_impact(&peg, &ball, 0.0f, 1.0f, 1e-4f, &toi) == 1,
+    ck_assert_msg(cr_time_of_impact(&peg, &ball, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi) == 1,
                   "impact at %.9g missed", e);
     ck_assert_close(toi, e, 1e-5);
 }
@@ -653,7 +653,7 @@ START_TEST(test_toi_rotating_box_stops_within_tolerance_before_contact)
             e = lo;
         }
     ck_assert_msg(e > 0.0, "the scan finds no contact");
-    ck_assert_int_eq(cr_time_of_impact(&ground, &spin, 0.0f, 1.0f, tol, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&ground, &spin, 0.0f, 1.0f, tol, 1.0f /* dt */, &toi), 1);
     ck_assert_msg(toi >= 0.0f && (double)toi <= e + 1e-6,
                   "toi %.9g not in [0, contact %.9g]", (double)toi, e);
     pa = posed(&ground, toi);
@@ -663,7 +663,7 @@ START_TEST(test_toi_rotating_box_stops_within_tolerance_before_contact)
                   "separation %.9g at toi %.9g, tolerance %g", (double)sep,
                   (double)toi, (double)tol);
     /* the other order */
-    ck_assert_int_eq(cr_time_of_impact(&spin, &ground, 0.0f, 1.0f, tol, &toi), 1);
+    ck_assert_int_eq(cr_time_of_impact(&spin, &ground, 0.0f, 1.0f, tol, 1.0f /* dt */, &toi), 1);
     pa = posed(&spin, toi);
     pb = posed(&ground, toi);
     sep = cr_separation(&pa, &pb);
@@ -681,16 +681,16 @@ START_TEST(test_toi_passing_bodies_miss)
     float toi = -1.0f;
     /* passes 2 above, closest distance 2 > 1 */
     set_motion(&b, -4, 0, 0, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 2.0f, 1e-4f, &toi), 0);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 2.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
     /* over the box's top (1) with 0.5 to spare: centre at 2, r = 0.5 */
-    ck_assert_int_eq(cr_time_of_impact(&box, &b, 0.0f, 2.0f, 1e-4f, &toi), 0);
+    ck_assert_int_eq(cr_time_of_impact(&box, &b, 0.0f, 2.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
     /* the same, accelerating differently (the quartic): 0.25 to spare */
     set_motion(&b, -4, 0.25, 0, 0, -0.5);
     ck_assert(circles_gap_d(&a, &b, 0.5) > 0.5);
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 2.0f, 1e-4f, &toi), 0);
+    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 2.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
     /* a spinning box moving away */
     set_motion(&spin, 1, 1, 4, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&box, &spin, 0.0f, 2.0f, 1e-4f, &toi), 0);
+    ck_assert_int_eq(cr_time_of_impact(&box, &spin, 0.0f, 2.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
 }
 END_TEST
 
