@@ -361,6 +361,41 @@ START_TEST(test_row_of_touching_balls_passes_the_impulse_along_in_order)
 }
 END_TEST
 
+/* The note's first-impact method never searches again after an impulse:
+ * in the cradle each pair's impact is found only at the start of a later
+ * step, one pair per step, where events takes the whole row at one instant.
+ * The end state is the same; the instants are not. */
+START_TEST(test_first_impact_method_takes_chained_impacts_late)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_FIRST_IMPACT, 0.0f, 1.0f / 60.0f, 6);
+    tw t = tw_make(&wd);
+    int i, k, seen = 0;
+    double first = -1.0, last = -1.0;
+    add_circle(&t, 0.5f, -3.0f, 0.0f, 2.0f, 0.0f, 1.0f);
+    for (i = 0; i < 5; ++i)
+        add_circle(&t, 0.5f, (float)i, 0.0f, 0.0f, 0.0f, 1.0f);
+    for (k = 0; k < 120; ++k) {
+        int n, e;
+        const carom_event *ev;
+        tw_steps(&t, 1);
+        ev = carom_world_events(t.w, &n);
+        for (e = 0; e < n; ++e) {
+            if (seen == 0)
+                first = ev[e].t;
+            last = ev[e].t;
+            ++seen;
+        }
+    }
+    ck_assert_int_eq(seen, 5);
+    /* one step apart per link of the chain, not one instant */
+    ck_assert_close(last - first, 4.0 / 60.0, 1e-4);
+    for (i = 0; i < 5; ++i)
+        ck_assert_close(tw_state(&t, i).velocity.x, 0.0, 1e-6);
+    ck_assert_close(tw_state(&t, 5).velocity.x, 2.0, 1e-6);
+    tw_free(&t);
+}
+END_TEST
+
 /* A light ball between a heavy slab and a wall (e = 1) is hit many times
  * per step. With room for 8 impacts the step reports the cap, and still
  * no body passes through another. */
@@ -471,6 +506,7 @@ Suite *suite_events(void)
     tcase_add_test(tc, test_polygon_hit_off_centre_conserves_linear_and_angular_momentum);
     tcase_add_test(tc, test_elastic_gas_of_1000_circles_keeps_kinetic_energy);
     tcase_add_test(to, test_row_of_touching_balls_passes_the_impulse_along_in_order);
+    tcase_add_test(to, test_first_impact_method_takes_chained_impacts_late);
     tcase_add_test(to, test_event_cap_is_reported_and_bodies_stay_ordered);
     tcase_add_test(to, test_events_method_keeps_stacks_standing_and_balls_settling);
     tcase_add_test(to, test_ball_rests_even_when_g_dt_exceeds_rest_speed);
