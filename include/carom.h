@@ -20,10 +20,16 @@
  *    trigonometry: carom_rot_from_angle() and carom_rot_angle() are its own,
  *    built from + - * / and sqrt, so results can match bit for bit across
  *    CPUs with IEEE single precision and no fused multiply-add.
+ *  - Methods: "events" (default) finds every impact at its instant inside
+ *    the step and takes impacts in time order; "discrete" resolves contacts
+ *    at the end of the step; "first-impact" is the design note's method
+ *    (docs/events.md).
+ *  - Profiling: a library built with CAROM_ENABLE_PROFILE counts every float
+ *    operation by kind and pipeline phase (docs/cost-model.md).
  *  - Switches and limits: carom_config.h.
  *
  * SECTIONS: types -- status -- rotation helpers -- world life cycle --
- *           bodies -- stepping -- reading results.
+ *           bodies -- stepping -- reading results -- profiling.
  *
  * A minimal program:
  *
