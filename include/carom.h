@@ -5,7 +5,7 @@
  * polygons (up to CAROM_MAX_POLYGON_VERTICES vertices) move under uniform
  * gravity, constant per-body forces and an optional force callback,
  * integrated with velocity Verlet; they collide with Newton restitution and
- * Coulomb friction.
+ * Coulomb friction, and rest on each other as contact constraints.
  *
  * THE IMPORTANT PARTS
  *  - Memory: the caller owns all of it. Ask carom_world_buffer_size() how
@@ -14,34 +14,50 @@
  *  - Definitions: worlds and bodies are made from definition structs that
  *    start from carom_default_world_def() / carom_default_body_def(), so new
  *    fields never break callers and every default is written down once.
- *  - Status: every call that can fail returns a carom_status; on failure
- *    nothing was changed. carom_status_string() names it.
+ *  - Status: every call that can fail returns a carom_status, and on failure
+ *    the world is as it was before the call (for carom_world_step: see its
+ *    comment for the one exception, the event list). carom_status_string()
+ *    names it.
  *  - Rotation is a unit (cos, sin) pair. The library computes no libm
  *    trigonometry: carom_rot_from_angle() and carom_rot_angle() are its own,
- *    built from + - * / and sqrt, so results can match bit for bit across
- *    CPUs with IEEE single precision and no fused multiply-add.
+ *    built from + - * / and sqrt, so results match bit for bit across CPUs
+ *    with IEEE single precision and no fused multiply-add.
  *  - Methods: "events" (default) finds every impact at its instant inside
  *    the step and takes impacts in time order; "discrete" resolves contacts
- *    at the end of the step; "first-impact" is the design note's method
- *    (docs/events.md).
- *  - Profiling: a library built with CAROM_ENABLE_PROFILE counts every float
- *    operation by kind and pipeline phase (docs/cost-model.md).
- *  - Switches and limits: carom_config.h.
+ *    with the contact solver only; "first-impact" is the design note's
+ *    method (docs/events.md). Resting contact is the same in all three: a
+ *    soft contact solver with substeps (docs/physics.md).
+ *  - Scale: no tolerance is in absolute metres. They derive from a length
+ *    unit (the bodies' mean half-width unless the world sets one) and from
+ *    |gravity| dt, so a scene scaled by 100 behaves the same.
+ *  - Profiling: a library built with CAROM_ENABLE_PROFILE (build/profile/
+ *    libcarom.a) counts every float operation by kind and pipeline phase
+ *    (docs/cost-model.md).
+ *  - Switches, limits and the valid input ranges: carom_config.h.
  *
  * SECTIONS: types -- status -- rotation helpers -- world life cycle --
  *           bodies -- stepping -- reading results -- profiling.
  *
- * A minimal program:
+ * A minimal program (a ball dropped on a floor; prints "ball at 0 0.5"):
  *
- *     carom_world_def wd = carom_default_world_def();
  *     static unsigned char mem[1 << 16];          // or malloc'd by you
+ *     carom_world_def wd = carom_default_world_def();
+ *     carom_body_def floor = carom_default_body_def();
+ *     carom_body_def ball = carom_default_body_def();
+ *     carom_body_state s;
  *     carom_world *w;
- *     if (carom_world_buffer_size(&wd) > sizeof mem) return 1;
- *     carom_world_init(&w, &wd, mem, sizeof mem);
- *     carom_body_def bd = carom_default_body_def();
- *     bd.radius = 0.5f; bd.position.y = 10.0f;
- *     int ball; carom_world_add_body(w, &bd, &ball);
- *     for (int i = 0; i < 60; ++i) carom_world_step(w);
+ *     int id, i;
+ *     wd.max_bodies = 8;                          // capacities decide size
+ *     if (carom_world_init(&w, &wd, mem, sizeof mem) != CAROM_OK) return 1;
+ *     floor.type = CAROM_BODY_STATIC;
+ *     carom_body_def_set_box(&floor, 10.0f, 0.5f);
+ *     floor.position.y = -0.5f;
+ *     carom_world_add_body(w, &floor, NULL);
+ *     ball.radius = 0.5f; ball.position.y = 5.0f;
+ *     carom_world_add_body(w, &ball, &id);
+ *     for (i = 0; i < 300; ++i) carom_world_step(w);
+ *     carom_body_get_state(w, id, &s);
+ *     printf("ball at %.3g %.3g\n", s.position.x, s.position.y);
  */
 #ifndef CAROM_H
 #define CAROM_H
@@ -59,6 +75,14 @@ extern "C" {
  * Types
  * ====================================================================== */
 
+/** Library version (also carom_version()). */
+#define CAROM_VERSION_MAJOR 0
+#define CAROM_VERSION_MINOR 2
+#define CAROM_VERSION_PATCH 0
+
+/** Pass in a world definition field to have carom derive the value. */
+#define CAROM_AUTO (-1.0f)
+
 typedef struct carom_vec2 {
     float x, y;
 } carom_vec2;
@@ -69,8 +93,11 @@ typedef struct carom_rot {
 } carom_rot;
 
 typedef enum carom_body_type {
-    CAROM_BODY_DYNAMIC = 0,
-    CAROM_BODY_STATIC = 1
+    CAROM_BODY_DYNAMIC = 0,  /**< moved by forces and contacts */
+    CAROM_BODY_STATIC = 1,   /**< never moves (infinite mass) */
+    CAROM_BODY_KINEMATIC = 2 /**< moves with the velocity the program sets,
+                                  pushes dynamic bodies, is not pushed
+                                  (CAROM_ENABLE_KINEMATIC) */
 } carom_body_type;
 
 typedef enum carom_shape_type {
@@ -80,65 +107,101 @@ typedef enum carom_shape_type {
 
 /** How a step resolves collisions. */
 typedef enum carom_method {
-    CAROM_METHOD_DISCRETE = 0, /**< contacts found and resolved at the end
-                                    of the step (overlap-based, like most
-                                    game engines) */
+    CAROM_METHOD_DISCRETE = 0, /**< the contact solver alone: contacts kept
+                                    a little before they touch
+                                    (speculative), restitution applied once
+                                    per step (like most game engines) */
     CAROM_METHOD_EVENTS = 1,   /**< every impact at its exact instant inside
-                                    the step, in time order (default) */
+                                    the step, in time order, simultaneous
+                                    impacts together (default) */
     CAROM_METHOD_FIRST_IMPACT = 2, /**< the design note's method: each pair's
                                     first impact in the step, found once at
-                                    the start of the step, sub-stepped to
-                                    its instant; later impacts of the step
-                                    are left to the end-of-step solver */
+                                    the start of the step, taken at its
+                                    instant; later impacts of the step are
+                                    left to the contact solver */
     CAROM_METHOD_COUNT
 } carom_method;
 
 /** Body state as the caller sees it. */
 typedef struct carom_body_state {
-    carom_vec2 position; /**< body origin (the point the definition placed) */
+    carom_vec2 position; /**< body origin (the point the definition placed),
+                              m */
     carom_rot rotation;
-    carom_vec2 velocity; /**< velocity of the centre of mass */
-    float angular_velocity;
-    carom_vec2 center; /**< centre of mass, world frame */
+    carom_vec2 velocity; /**< velocity of the centre of mass, m/s */
+    float angular_velocity; /**< rad/s, counter-clockwise */
+    carom_vec2 center;   /**< centre of mass, world frame, m */
 } carom_body_state;
 
 /**
- * User force callback, evaluated once per dynamic body per step at the
- * step's new positions (velocity Verlet needs a(x1)). `state` holds the new
- * position and rotation and the velocity at the start of the step (the new
- * velocity depends on the force, so it is not known yet). Write the force
- * (applied at the centre of mass, N) and torque (N m); both start at zero.
+ * User force callback, evaluated once per awake dynamic body per step at
+ * the step's new positions (velocity Verlet needs a(x1)). `state` holds the
+ * new position and rotation and the velocity at the start of the step (the
+ * new velocity depends on the force, so it is not known yet). Write the
+ * force (N, applied at the centre of mass) and torque (N m); both start at
+ * zero. A non-finite or out-of-range result fails the step
+ * (CAROM_ERR_NOT_FINITE / CAROM_ERR_OUT_OF_RANGE) and the world keeps its
+ * state from before the step.
  */
 typedef void (*carom_force_fn)(void *user, int body,
                                const carom_body_state *state,
                                carom_vec2 *force, float *torque);
 
-/** An impact: one per colliding body pair and impact instant. */
+/**
+ * An impact: two bodies meeting faster than the rest speed (so their
+ * restitution applies). Slower meetings are resting contact, which makes no
+ * event. One per impacting body pair and instant; impacts solved together
+ * (simultaneous) share their t.
+ */
 typedef struct carom_event {
     float t;              /**< absolute time of the impact, s */
-    int body_a, body_b;   /**< body_a < body_b */
+    int body_a, body_b;   /**< ids; body_a has the smaller slot index */
     carom_vec2 normal;    /**< unit normal, from body_a towards body_b */
-    float impulse;        /**< total normal impulse applied, N s (>= 0) */
+    float impulse;        /**< normal impulse of the impact, N s (>= 0) */
     float approach_speed; /**< normal approach speed before it, m/s (>= 0) */
 } carom_event;
 
 typedef struct carom_world_def {
     carom_vec2 gravity;       /**< m/s^2, default (0, -10) */
-    float dt;                 /**< fixed step, s, > 0; default 1/60 */
+    float dt;                 /**< fixed step, s, in [CAROM_LIMIT_MIN_DT,
+                                   CAROM_LIMIT_MAX_DT]; default 1/60 */
     carom_method method;      /**< default CAROM_METHOD_EVENTS (DISCRETE if
                                    CAROM_ENABLE_EVENTS is 0) */
-    int max_bodies;           /**< body capacity, default 256 */
-    int max_pairs;            /**< broadphase pairs / contacts per step;
-                                   0 = CAROM_DEFAULT_PAIRS_PER_BODY *
-                                   max_bodies */
-    int max_events;           /**< impacts per step (recorded; processed by
-                                   the events methods); 0 = 8 per body, at
-                                   least 256 */
+    int max_bodies;           /**< body capacity, default 256, at most
+                                   2^CAROM_ID_INDEX_BITS */
+    int max_pairs;            /**< candidate pairs (overlapping bounding
+                                   boxes); 0 = CAROM_DEFAULT_PAIRS_PER_BODY
+                                   x max_bodies */
+    int max_contacts;         /**< pairs within contact distance (with a
+                                   manifold); 0 = CAROM_DEFAULT_CONTACTS_PER_
+                                   BODY x max_bodies */
+    int max_events;           /**< impacts recorded per step for
+                                   carom_world_events(); 0 = default (more
+                                   are counted in carom_world_events_dropped,
+                                   not an error) */
+    int max_impacts;          /**< impacts taken one at a time per step
+                                   (events methods) before the rest of the
+                                   step's contacts are solved together; 0 =
+                                   default (CAROM_DEFAULT_IMPACTS_PER_BODY) */
+    float length_unit;        /**< m; CAROM_AUTO (default): the mean half-width
+                                   of the dynamic bodies. Scales every
+                                   distance tolerance (carom_config.h) */
     float rest_speed;         /**< approach speed (m/s) below which contacts
-                                   get no restitution; default 0.5 */
-    float linear_slop;        /**< contact distance (m); default 0.0005 */
-    int velocity_iterations;  /**< default 10 */
-    int position_iterations;  /**< default 6 */
+                                   are resting, not impacts (no restitution,
+                                   no event); CAROM_AUTO (default):
+                                   CAROM_REST_SPEED_PER_ACCEL_DT x |a| dt, so
+                                   0 in zero gravity */
+    float linear_slop;        /**< contact distance, m; CAROM_AUTO (default):
+                                   CAROM_SLOP_PER_LENGTH x length_unit */
+    int substeps;             /**< contact substeps per step, 1..64; default
+                                   CAROM_DEFAULT_SUBSTEPS (4) */
+    int iterations;           /**< contact sweeps per substep, 1..64;
+                                   default 1 */
+    int relax_iterations;     /**< relaxing sweeps per substep, 0..64;
+                                   default 1 */
+    int enable_sleep;         /**< 1 (default): quiet islands sleep
+                                   (CAROM_ENABLE_SLEEP); 0: never */
+    float sleep_time;         /**< s an island must stay still to sleep;
+                                   default CAROM_DEFAULT_SLEEP_TIME */
     carom_force_fn force_fn;  /**< optional; needs CAROM_ENABLE_FORCES */
     void *force_user;         /**< passed to force_fn */
 } carom_world_def;
@@ -146,20 +209,22 @@ typedef struct carom_world_def {
 typedef struct carom_body_def {
     carom_body_type type;     /**< default dynamic */
     carom_shape_type shape;   /**< default circle */
-    float radius;             /**< circle radius, > 0; default 0.5 */
+    float radius;             /**< circle radius, m, > 0; default 0.5 */
     int vertex_count;         /**< polygon: 3..CAROM_MAX_POLYGON_VERTICES */
-    carom_vec2 vertices[CAROM_MAX_POLYGON_VERTICES]; /**< polygon, body frame.
-                                   Clockwise input is reversed to counter-
+    carom_vec2 vertices[CAROM_MAX_POLYGON_VERTICES]; /**< polygon, body frame,
+                                   m. Clockwise input is reversed to counter-
                                    clockwise; anything not strictly convex
                                    and simple is rejected. */
-    carom_vec2 position;      /**< origin of the body frame, world */
+    carom_vec2 position;      /**< origin of the body frame, world, m */
     carom_rot rotation;       /**< default (1, 0); normalised on add */
-    carom_vec2 velocity;      /**< of the centre of mass */
+    carom_vec2 velocity;      /**< of the centre of mass, m/s */
     float angular_velocity;   /**< rad/s */
     float density;            /**< kg/m^2, > 0; default 1 */
-    float mass;               /**< 0: from density; > 0 overrides density */
-    float restitution;        /**< [0, 1]; default 0 */
-    float friction;           /**< >= 0; default 0.6 */
+    float mass;               /**< kg; 0: from density; > 0 overrides density */
+    float restitution;        /**< [0, 1]; default 0. A contact uses the
+                                   larger of its two bodies' values */
+    float friction;           /**< >= 0; default 0.6. A contact uses
+                                   sqrt(friction_a friction_b) */
     carom_vec2 force;         /**< constant force at the centre, N */
     float torque;             /**< constant torque, N m */
 } carom_body_def;
@@ -173,39 +238,54 @@ typedef struct carom_world carom_world; /* opaque; lives in caller memory */
 typedef enum carom_status {
     CAROM_OK = 0,
     CAROM_ERR_NULL,               /**< a required pointer is NULL */
-    CAROM_ERR_NOT_FINITE,         /**< NaN or infinity in the input */
-    CAROM_ERR_BAD_DT,             /**< dt <= 0 */
+    CAROM_ERR_NOT_FINITE,         /**< NaN or infinity in the input, or in a
+                                       body's state at the end of a step
+                                       (carom_world_error_body names it) */
+    CAROM_ERR_BAD_DT,             /**< dt outside [CAROM_LIMIT_MIN_DT,
+                                       CAROM_LIMIT_MAX_DT] */
     CAROM_ERR_BAD_CAPACITY,       /**< a capacity <= 0 or too large */
     CAROM_ERR_BUFFER_TOO_SMALL,   /**< caller buffer smaller than needed */
-    CAROM_ERR_BAD_PARAMETER,      /**< rest_speed, slop or iterations < 0 */
+    CAROM_ERR_BAD_PARAMETER,      /**< substeps or iterations out of range,
+                                       sleep_time < 0 */
     CAROM_ERR_BAD_METHOD,         /**< unknown method */
-    CAROM_ERR_BAD_BODY_TYPE,      /**< neither static nor dynamic */
+    CAROM_ERR_BAD_BODY_TYPE,      /**< not static, dynamic or kinematic */
     CAROM_ERR_BAD_SHAPE,          /**< neither circle nor polygon */
-    CAROM_ERR_BAD_RADIUS,         /**< radius <= 0 */
+    CAROM_ERR_BAD_RADIUS,         /**< radius outside [CAROM_LIMIT_MIN_SIZE,
+                                       CAROM_LIMIT_MAX_LENGTH] */
     CAROM_ERR_BAD_DENSITY,        /**< density <= 0 */
-    CAROM_ERR_BAD_MASS,           /**< mass < 0 */
+    CAROM_ERR_BAD_MASS,           /**< mass < 0, or mass or inertia outside
+                                       [CAROM_LIMIT_MIN_MASS,
+                                       CAROM_LIMIT_MAX_MASS] */
     CAROM_ERR_BAD_RESTITUTION,    /**< restitution outside [0, 1] */
     CAROM_ERR_BAD_FRICTION,       /**< friction < 0 */
     CAROM_ERR_BAD_ROTATION,       /**< rotation pair (0, 0) */
     CAROM_ERR_TOO_FEW_VERTICES,   /**< polygon with < 3 vertices */
     CAROM_ERR_TOO_MANY_VERTICES,  /**< > CAROM_MAX_POLYGON_VERTICES */
-    CAROM_ERR_DEGENERATE_POLYGON, /**< repeated or collinear vertices, or
-                                       (near) zero area */
+    CAROM_ERR_DEGENERATE_POLYGON, /**< repeated or collinear vertices, (near)
+                                       zero area, or thinner than
+                                       CAROM_LIMIT_MIN_SIZE */
     CAROM_ERR_SELF_INTERSECTING,  /**< two edges cross */
     CAROM_ERR_NOT_CONVEX,         /**< a reflex vertex */
     CAROM_ERR_WORLD_FULL,         /**< max_bodies reached */
     CAROM_ERR_BAD_BODY_ID,        /**< no such body */
-    CAROM_ERR_PAIR_CAPACITY,      /**< more touching pairs than max_pairs:
-                                       the step completed with the first
-                                       max_pairs (in body order) only */
-    CAROM_ERR_EVENT_CAPACITY,     /**< more impacts in the step than
-                                       max_events (see the method's docs) */
+    CAROM_ERR_PAIR_CAPACITY,      /**< more candidate pairs than max_pairs;
+                                       the step was not taken */
+    CAROM_ERR_CONTACT_CAPACITY,   /**< more contacts than max_contacts; the
+                                       step was not taken */
     CAROM_ERR_DISABLED,           /**< capability compiled out */
+    CAROM_ERR_OUT_OF_RANGE,       /**< a value outside carom's documented
+                                       range (carom_config.h CAROM_LIMIT_*);
+                                       at the end of a step:
+                                       carom_world_error_body names it */
+    CAROM_ERR_STALE_ID,           /**< the body of that id was removed */
     CAROM_STATUS_COUNT
 } carom_status;
 
 /** Stable, human-readable name of a status ("ok", "not finite", ...). */
 const char *carom_status_string(carom_status status);
+
+/** "MAJOR.MINOR.PATCH" of the library (may differ from the header's). */
+const char *carom_version(void);
 
 /* ======================================================================
  * Rotation helpers (library's own trigonometry; no libm)
@@ -248,28 +328,38 @@ carom_status carom_body_def_set_box(carom_body_def *def, float hx, float hy);
 /** Check a body definition without adding it. */
 carom_status carom_body_def_validate(const carom_body_def *def);
 
-/** Add a body; its id (0, 1, 2, ... in order of addition) goes to *id. */
+/** Add a body; its id goes to *id (0, 1, 2, ... in a fresh world). */
 carom_status carom_world_add_body(carom_world *w, const carom_body_def *def,
                                   int *id);
 
+/** Number of bodies in the world. */
 int carom_world_body_count(const carom_world *w);
 
 carom_status carom_body_get_state(const carom_world *w, int id,
                                   carom_body_state *out);
 
-/** Mass (kg) and rotational inertia about the centre (kg m^2); 0 if static */
+/** Mass (kg) and rotational inertia about the centre (kg m^2); 0 if not
+ * dynamic. */
 carom_status carom_body_get_mass(const carom_world *w, int id, float *mass,
                                  float *inertia);
 
-/** Replace a body's constant force and torque (CAROM_ENABLE_FORCES). */
+/** Replace a body's constant force (N) and torque (N m)
+ * (CAROM_ENABLE_FORCES). Wakes the body. */
 carom_status carom_body_set_force(carom_world *w, int id, carom_vec2 force,
                                   float torque);
+
+/** 1 if the body is awake (simulated), 0 if asleep (CAROM_ENABLE_SLEEP). */
+int carom_body_is_awake(const carom_world *w, int id);
 
 /* ======================================================================
  * Stepping
  * ====================================================================== */
 
-/** Advance the world by one dt. */
+/**
+ * Advance the world by one dt. On any status but CAROM_OK the bodies,
+ * contacts, counters and time are exactly as before the call (the step is
+ * rolled back); only the event list then holds no events.
+ */
 carom_status carom_world_step(carom_world *w);
 
 carom_status carom_world_set_method(carom_world *w, carom_method method);
@@ -292,16 +382,43 @@ long carom_world_step_count(const carom_world *w);
 /** Impacts of the last step, in time order; *count gets how many. */
 const carom_event *carom_world_events(const carom_world *w, int *count);
 
-/** Number of impacts of the last step that did not fit in max_events. */
+/** Impacts of the last step that did not fit in max_events. */
 int carom_world_events_dropped(const carom_world *w);
 
-/** Counters accumulated since the world was made. */
+/** The body whose state failed the last step's end check
+ * (CAROM_ERR_NOT_FINITE or CAROM_ERR_OUT_OF_RANGE), or -1. */
+int carom_world_error_body(const carom_world *w);
+
+/** The tolerances in use, after CAROM_AUTO is resolved (they follow the
+ * bodies' sizes, so they may change as bodies are added). */
+typedef struct carom_tolerances {
+    float length_unit;   /**< m */
+    float linear_slop;   /**< m */
+    float rest_speed;    /**< m/s, for a body under gravity alone */
+    float sleep_speed;   /**< m/s */
+} carom_tolerances;
+
+carom_status carom_world_get_tolerances(const carom_world *w,
+                                        carom_tolerances *out);
+
+/** Counters accumulated since the world was made, and the largest needs
+ * met (what `carom lean` reports as capacities). */
 typedef struct carom_stats {
     long steps;
-    long impacts;        /**< events recorded */
+    long impacts;        /**< impacts taken (events methods) or restitution
+                              contacts (discrete) */
+    long impact_solves;  /**< simultaneous solves (one per impact instant) */
     long toi_queries;    /**< pair time-of-impact searches (events methods) */
     long toi_early_outs; /**< of which ruled out by the closest-approach
                               test before any root finding */
+    long budget_steps;   /**< steps that met more impacts than max_impacts
+                              and solved the rest of their contacts
+                              together */
+    int max_pairs_used;  /**< most candidate pairs in one step */
+    int max_contacts_used; /**< most contacts in one step */
+    int max_impacts_used;  /**< most impacts in one step */
+    int awake_bodies;    /**< bodies simulated in the last step */
+    int contacts;        /**< contacts in the last step */
 } carom_stats;
 
 carom_status carom_world_get_stats(const carom_world *w, carom_stats *out);
@@ -321,11 +438,11 @@ typedef enum carom_op {
 /** Pipeline phases. */
 typedef enum carom_phase {
     CAROM_PHASE_INTEGRATION,   /**< "integration": Verlet drift and kick */
-    CAROM_PHASE_BROADPHASE,    /**< "broadphase": boxes, sort and sweep */
+    CAROM_PHASE_BROADPHASE,    /**< "broadphase": boxes, grid, pairs */
     CAROM_PHASE_NARROWPHASE,   /**< "narrowphase": contact manifolds */
     CAROM_PHASE_IMPACT_TIMING, /**< "impact_timing": time of impact, early-out */
     CAROM_PHASE_IMPULSES,      /**< "impulse_resolution": impact impulses */
-    CAROM_PHASE_RESTING,       /**< "resting_contacts": resting forces, projection */
+    CAROM_PHASE_RESTING,       /**< "resting_contacts": the contact solver */
     CAROM_PHASE_COUNT
 } carom_phase;
 
@@ -336,7 +453,7 @@ typedef struct carom_profile {
     uint64_t ops[CAROM_PHASE_COUNT][CAROM_OP_COUNT];
     uint64_t steps;      /**< steps taken while attached */
     uint64_t body_steps; /**< sum over those steps of the body count */
-    uint64_t impacts;    /**< events recorded while attached */
+    uint64_t impacts;    /**< impacts while attached */
 } carom_profile;
 
 /** A cost per operation kind, in the caller's unit ("add units" for the
@@ -355,7 +472,10 @@ carom_status carom_world_set_profile(carom_world *w, carom_profile *p);
  * sqrt 6), "cortex-m4f", "cortex-m0" (docs/cost-model.md gives sources). */
 carom_status carom_op_weights_preset(const char *name, carom_op_weights *out);
 
-/** Weighted sum of the counts of one phase, or of all if phase < 0. */
+/** Weighted sum of the counts of one phase (0 .. CAROM_PHASE_COUNT - 1),
+ * or of all phases if phase is CAROM_PHASE_COUNT; 0 for any other phase,
+ * a NULL argument, or a library built without CAROM_ENABLE_PROFILE (whose
+ * steps count nothing). Summed in order, in float. */
 float carom_profile_cost(const carom_profile *p, const carom_op_weights *wt,
                          int phase);
 

@@ -1,11 +1,13 @@
 /*
- * carom_config.h -- every compile-time switch and limit of carom, with its
- * default. Override any of them with -DNAME=VALUE when building the library
- * (and use the same values when compiling code that includes carom.h).
+ * carom_config.h -- every compile-time switch, limit and default of carom.
+ * Override any of them with -DNAME=VALUE when building the library, and use
+ * the same values when compiling code that includes carom.h.
  *
  * Switches are 0 (off) or 1 (on). A switch that is off removes the code of
  * that capability from the library; asking for it at run time returns
  * CAROM_ERR_DISABLED instead of silently doing something else.
+ * `build/carom lean SCENE` prints the smallest set that gives the same
+ * results on a scene.
  */
 #ifndef CAROM_CONFIG_H
 #define CAROM_CONFIG_H
@@ -27,19 +29,73 @@
 #endif
 
 #ifndef CAROM_ENABLE_FORCES
-#define CAROM_ENABLE_FORCES 1 /**< per-body constant force/torque and the
-                                   user force callback; off: gravity only */
+#define CAROM_ENABLE_FORCES 1 /**< per-body constant force/torque, one-step
+                                   forces and the user force callback; off:
+                                   gravity only */
 #endif
 
 #ifndef CAROM_ENABLE_EVENTS
-#define CAROM_ENABLE_EVENTS 1 /**< in-step impact timing (method "events");
-                                   off: only the "discrete" method */
+#define CAROM_ENABLE_EVENTS 1 /**< in-step impact timing (methods "events"
+                                   and "first-impact"); off: only the
+                                   "discrete" method */
+#endif
+
+#ifndef CAROM_ENABLE_SLEEP
+#define CAROM_ENABLE_SLEEP 1 /**< islands of touching bodies fall asleep when
+                                  they stay slow (world def enable_sleep);
+                                  off: every body is simulated every step */
+#endif
+
+#ifndef CAROM_ENABLE_COMPENSATED
+#define CAROM_ENABLE_COMPENSATED 1 /**< positions and velocities carry a
+                                        compensation term (Kahan), so the
+                                        rounding of x += v dt does not pile
+                                        up as dt shrinks (docs/accuracy.md);
+                                        off: plain float sums */
+#endif
+
+#ifndef CAROM_ENABLE_KINEMATIC
+#define CAROM_ENABLE_KINEMATIC 1 /**< kinematic bodies: moved by the velocity
+                                      the program sets, push dynamic bodies,
+                                      unaffected by them */
+#endif
+
+#ifndef CAROM_ENABLE_FILTERING
+#define CAROM_ENABLE_FILTERING 1 /**< collision filter: category and mask
+                                      bits and a group index per body */
+#endif
+
+#ifndef CAROM_ENABLE_SENSORS
+#define CAROM_ENABLE_SENSORS 1 /**< sensor bodies: report overlaps, exert no
+                                    impulses */
+#endif
+
+#ifndef CAROM_ENABLE_QUERIES
+#define CAROM_ENABLE_QUERIES 1 /**< box overlap, ray cast and point queries */
+#endif
+
+#ifndef CAROM_ENABLE_TOUCH_EVENTS
+#define CAROM_ENABLE_TOUCH_EVENTS 1 /**< begin-touch / end-touch reports */
 #endif
 
 #ifndef CAROM_ENABLE_PROFILE
 #define CAROM_ENABLE_PROFILE 0 /**< count every float operation by kind and
                                     phase; off: the arithmetic layer is plain
                                     float code and no counter exists */
+#endif
+
+/* Finer cuts for lean builds (`carom lean`): shape pairs a scene never
+ * meets. Each is implied off when CAROM_ENABLE_POLYGONS is 0. */
+#ifndef CAROM_ENABLE_POLYGON_POLYGON
+#define CAROM_ENABLE_POLYGON_POLYGON 1 /**< polygon-polygon contacts (SAT and
+                                            clipping); off: polygons meet
+                                            only circles */
+#endif
+
+#ifndef CAROM_ENABLE_DYNAMIC_POLYGONS
+#define CAROM_ENABLE_DYNAMIC_POLYGONS 1 /**< dynamic (and kinematic) polygons;
+                                             off: polygons may only be
+                                             static (walls, floors) */
 #endif
 
 /* ---- limits ------------------------------------------------------------ */
@@ -49,7 +105,54 @@
 #endif
 
 #ifndef CAROM_MAX_MANIFOLD_POINTS
-#define CAROM_MAX_MANIFOLD_POINTS 2 /**< contact points per body pair */
+#define CAROM_MAX_MANIFOLD_POINTS 2 /**< contact points per body pair (2 is
+                                         what 2D convex shapes need) */
+#endif
+
+/* Body ids carry the slot index in their low CAROM_ID_INDEX_BITS bits and a
+ * generation count above it, so an id of a removed body is rejected
+ * (CAROM_ERR_STALE_ID) instead of naming whoever reuses the slot. A fresh
+ * world numbers bodies 0, 1, 2, ... (generation 0). */
+#ifndef CAROM_ID_INDEX_BITS
+#define CAROM_ID_INDEX_BITS 20 /**< so max_bodies <= 2^20 (1,048,576); the
+                                    generation wraps after 2^11 reuses of a
+                                    slot */
+#endif
+
+/* Ranges carom guarantees (docs/robustness.md). Inputs outside them are
+ * refused with CAROM_ERR_OUT_OF_RANGE (or the field's own status), so that
+ * every derived quantity (inverse mass and inertia, v dt, a dt^2, squared
+ * distances) stays a finite, normal float. */
+#ifndef CAROM_LIMIT_MAX_LENGTH
+#define CAROM_LIMIT_MAX_LENGTH 1.0e8f /**< m: |position| components, vertex
+                                           coordinates, radius, half-extents */
+#endif
+#ifndef CAROM_LIMIT_MIN_SIZE
+#define CAROM_LIMIT_MIN_SIZE 1.0e-6f /**< m: smallest radius or half-width of
+                                          a body; smaller bodies' inertia
+                                          underflows */
+#endif
+#ifndef CAROM_LIMIT_MAX_SPEED
+#define CAROM_LIMIT_MAX_SPEED 1.0e8f /**< m/s: |velocity| components, and
+                                          |angular velocity| times the body's
+                                          extent */
+#endif
+#ifndef CAROM_LIMIT_MAX_ACCEL
+#define CAROM_LIMIT_MAX_ACCEL 1.0e12f /**< m/s^2: |gravity| components and
+                                           every force / mass (also torque
+                                           times extent / inertia) */
+#endif
+#ifndef CAROM_LIMIT_MIN_MASS
+#define CAROM_LIMIT_MIN_MASS 1.0e-20f /**< kg (and kg m^2 for inertia) */
+#endif
+#ifndef CAROM_LIMIT_MAX_MASS
+#define CAROM_LIMIT_MAX_MASS 1.0e20f /**< kg (and kg m^2 for inertia) */
+#endif
+#ifndef CAROM_LIMIT_MIN_DT
+#define CAROM_LIMIT_MIN_DT 1.0e-7f /**< s: smallest time step */
+#endif
+#ifndef CAROM_LIMIT_MAX_DT
+#define CAROM_LIMIT_MAX_DT 10.0f /**< s: largest time step */
 #endif
 
 /* ---- defaults of carom_world_def (see carom_default_world_def) ---------- */
@@ -67,40 +170,125 @@
 #endif
 
 #ifndef CAROM_DEFAULT_PAIRS_PER_BODY
-#define CAROM_DEFAULT_PAIRS_PER_BODY 4 /**< broadphase pair capacity is this
-                                            times max_bodies */
+#define CAROM_DEFAULT_PAIRS_PER_BODY 6 /**< candidate pair capacity (bounding
+                                            boxes that overlap) is this times
+                                            max_bodies; a pile of equal
+                                            circles needs about 3.5 */
+#endif
+
+#ifndef CAROM_DEFAULT_CONTACTS_PER_BODY
+#define CAROM_DEFAULT_CONTACTS_PER_BODY 4 /**< contact capacity (pairs within
+                                               contact distance, with a
+                                               manifold) is this times
+                                               max_bodies; a pile needs 2 to
+                                               3.5 */
 #endif
 
 #ifndef CAROM_DEFAULT_EVENTS_PER_BODY
-#define CAROM_DEFAULT_EVENTS_PER_BODY 8 /**< default event capacity (impacts
-                                             recorded and, for the events
-                                             methods, processed per step) is
-                                             this times max_bodies... */
+#define CAROM_DEFAULT_EVENTS_PER_BODY 2 /**< impacts recorded per step (for
+                                             carom_world_events) is this times
+                                             max_bodies, at least
+                                             CAROM_MIN_EVENTS; more are
+                                             counted, not an error */
 #endif
 
 #ifndef CAROM_MIN_EVENTS
-#define CAROM_MIN_EVENTS 256 /**< ...but at least this many */
+#define CAROM_MIN_EVENTS 64
 #endif
 
-#ifndef CAROM_DEFAULT_REST_SPEED
-#define CAROM_DEFAULT_REST_SPEED 0.5f /**< approach speed (m/s) below which a
-                                           contact is resting: restitution is
-                                           not applied, so a ball with e < 1
-                                           comes to rest instead of bouncing
-                                           ever lower (docs/physics.md) */
+#ifndef CAROM_DEFAULT_IMPACTS_PER_BODY
+#define CAROM_DEFAULT_IMPACTS_PER_BODY 64 /**< impacts the events methods take
+                                               one at a time per step: this
+                                               times the body count, at least
+                                               CAROM_MIN_IMPACTS; past it the
+                                               rest of the step's contacts
+                                               are solved together */
 #endif
 
-#ifndef CAROM_DEFAULT_LINEAR_SLOP
-#define CAROM_DEFAULT_LINEAR_SLOP 0.0005f /**< contact distance (m): pairs
-                                               closer than this are touching */
+#ifndef CAROM_MIN_IMPACTS
+#define CAROM_MIN_IMPACTS 16384
 #endif
 
-#ifndef CAROM_DEFAULT_VELOCITY_ITERATIONS
-#define CAROM_DEFAULT_VELOCITY_ITERATIONS 10 /**< sequential impulse sweeps */
+#ifndef CAROM_DEFAULT_SUBSTEPS
+#define CAROM_DEFAULT_SUBSTEPS 4 /**< contact substeps per step: resting
+                                      contacts are solved this many times a
+                                      step (docs/physics.md) */
 #endif
 
-#ifndef CAROM_DEFAULT_POSITION_ITERATIONS
-#define CAROM_DEFAULT_POSITION_ITERATIONS 6 /**< penetration projection sweeps */
+#ifndef CAROM_DEFAULT_ITERATIONS
+#define CAROM_DEFAULT_ITERATIONS 1 /**< contact sweeps per substep */
+#endif
+
+#ifndef CAROM_DEFAULT_RELAX_ITERATIONS
+#define CAROM_DEFAULT_RELAX_ITERATIONS 1 /**< sweeps per substep that remove
+                                              the push-out velocity again */
+#endif
+
+#ifndef CAROM_DEFAULT_SLEEP_TIME
+#define CAROM_DEFAULT_SLEEP_TIME 0.5f /**< s an island must stay slow before
+                                           it sleeps (as Box2D) */
+#endif
+
+/* ---- scale: tolerances derived from a length unit and |a| dt ------------ */
+/*
+ * carom has no absolute tolerance in metres or m/s. With the world's
+ * length_unit L (0: the mean half-width of the dynamic bodies, so a scene
+ * scaled by 100 in lengths and gravity behaves the same) and each body's
+ * acceleration |a| (gravity plus force / mass):
+ *   linear slop        CAROM_SLOP_PER_LENGTH x L
+ *   speculative reach  CAROM_SPECULATIVE_SLOPS x slop, plus the motion of
+ *                      the pair in the step
+ *   push-out speed     CAROM_PUSH_SPEED_PER_LENGTH x L per second
+ *   rest speed         CAROM_REST_SPEED_PER_ACCEL_DT x |a| dt (0 in zero
+ *                      gravity: every impact then bounces)
+ *   sleep speed        CAROM_SLEEP_SPEED_PER_LENGTH x L per second
+ * Each can be fixed instead in the world definition.
+ */
+#ifndef CAROM_SLOP_PER_LENGTH
+#define CAROM_SLOP_PER_LENGTH 1.0e-3f /**< contact distance per length unit:
+                                           0.5 mm for unit boxes */
+#endif
+
+#ifndef CAROM_SPECULATIVE_SLOPS
+#define CAROM_SPECULATIVE_SLOPS 4.0f /**< contacts are kept up to this many
+                                          slops apart (plus the step's
+                                          motion), so they exist before they
+                                          touch */
+#endif
+
+#ifndef CAROM_PUSH_SPEED_PER_LENGTH
+#define CAROM_PUSH_SPEED_PER_LENGTH 6.0f /**< 1/s: fastest speed an overlap is
+                                              pushed apart (3 m/s for unit
+                                              boxes, as Box2D v3) */
+#endif
+
+#ifndef CAROM_REST_SPEED_PER_ACCEL_DT
+#define CAROM_REST_SPEED_PER_ACCEL_DT 2.0f /**< approaches slower than this
+                                                times |a| dt are resting
+                                                contact, not impacts */
+#endif
+
+#ifndef CAROM_SLEEP_SPEED_PER_LENGTH
+#define CAROM_SLEEP_SPEED_PER_LENGTH 0.1f /**< 1/s: bodies slower than this
+                                               times L (points of a rotating
+                                               body included) count as still */
+#endif
+
+/* ---- the contact solver (docs/physics.md) ------------------------------- */
+
+#ifndef CAROM_POSITION_CORRECTION
+#define CAROM_POSITION_CORRECTION 0.2f /**< fraction of an overlap removed per
+                                            substep, on positions only (at
+                                            most the push-out speed times
+                                            the substep) */
+#endif
+
+#ifndef CAROM_FACE_TOL_PER_SLOP
+#define CAROM_FACE_TOL_PER_SLOP 0.1f /**< two polygons' faces whose
+                                          separations differ by less than
+                                          this many slops count as equal: the
+                                          manifold keeps its reference face,
+                                          so aligned edges never flip it */
 #endif
 
 /* ---- numerical constants (not meant to be tuned per scene) -------------- */
@@ -114,19 +302,27 @@
 #ifndef CAROM_TOI_TOLERANCE
 #define CAROM_TOI_TOLERANCE 0.1f /**< conservative advancement stops when the
                                       separation is below this fraction of
-                                      linear_slop (0.05 mm by default) */
+                                      the linear slop */
 #endif
 
-#ifndef CAROM_POSITION_BETA
-#define CAROM_POSITION_BETA 0.8f /**< fraction of a penetration removed per
-                                      projection sweep (1 overshoots in
-                                      stacks, small values let them sink) */
+#ifndef CAROM_SIMULTANEOUS_TIME_TOL
+#define CAROM_SIMULTANEOUS_TIME_TOL 1.0e-7f /**< impacts whose times differ by
+                                                 less than this fraction of
+                                                 dt are simultaneous: solved
+                                                 together */
 #endif
 
-#ifndef CAROM_MAX_LINEAR_CORRECTION
-#define CAROM_MAX_LINEAR_CORRECTION 0.2f /**< cap (m) of one projection, so a
-                                              deep overlap is undone over a
-                                              few steps instead of exploding */
+#ifndef CAROM_IMPACT_ISLAND_MAX_BODIES
+#define CAROM_IMPACT_ISLAND_MAX_BODIES 256 /**< bodies one simultaneous impact
+                                                solve reaches through resting
+                                                contacts (a stack struck from
+                                                above) */
+#endif
+
+#ifndef CAROM_IMPACT_ISLAND_ITERATIONS
+#define CAROM_IMPACT_ISLAND_ITERATIONS 256 /**< most sweeps of a simultaneous
+                                                impact solve; it stops
+                                                earlier once converged */
 #endif
 
 #ifndef CAROM_POLYGON_ANGLE_TOL

@@ -30,16 +30,6 @@
 
 /* ---- counting ---------------------------------------------------------- */
 
-enum {
-    CR_OP_ADD,
-    CR_OP_SUB,
-    CR_OP_MUL,
-    CR_OP_DIV,
-    CR_OP_CMP,
-    CR_OP_SQRT,
-    CR_OP_KINDS
-};
-
 #if CAROM_ENABLE_PROFILE
 /* Row of counters of the phase being executed, or NULL when not counting.
  * Set by cr_prof_phase(); one per library instance (profiling builds are
@@ -56,8 +46,9 @@ extern uint64_t *carom__op_row;
 /* ---- scalar ops ---------------------------------------------------------- */
 
 #if defined(CR_ARITH_PLAIN) && !CAROM_ENABLE_PROFILE
-/* Reference build for tools/check-zero-cost.sh: the same operations as bare
- * C operators. The default build must compile to the same machine code. */
+/* Reference build for `make bench` (tools/bench.sh): the same operations as
+ * bare C operators. The default build executes the same instructions (the
+ * bench compares their callgrind counts). */
 #define cr_add(a, b) ((a) + (b))
 #define cr_sub(a, b) ((a) - (b))
 #define cr_neg(a) (-(a))
@@ -74,22 +65,22 @@ CR_INLINE float cr_max(float a, float b) { return a > b ? a : b; }
 CR_INLINE float cr_abs(float a) { return a < 0.0f ? -a : a; }
 #else
 
-CR_INLINE float cr_add(float a, float b) { CR_COUNT(CR_OP_ADD); return a + b; }
-CR_INLINE float cr_sub(float a, float b) { CR_COUNT(CR_OP_SUB); return a - b; }
-CR_INLINE float cr_neg(float a) { CR_COUNT(CR_OP_SUB); return -a; }
-CR_INLINE float cr_mul(float a, float b) { CR_COUNT(CR_OP_MUL); return a * b; }
-CR_INLINE float cr_div(float a, float b) { CR_COUNT(CR_OP_DIV); return a / b; }
-CR_INLINE float cr_sqrt(float a) { CR_COUNT(CR_OP_SQRT); return sqrtf(a); }
+CR_INLINE float cr_add(float a, float b) { CR_COUNT(CAROM_OP_ADD); return a + b; }
+CR_INLINE float cr_sub(float a, float b) { CR_COUNT(CAROM_OP_SUB); return a - b; }
+CR_INLINE float cr_neg(float a) { CR_COUNT(CAROM_OP_SUB); return -a; }
+CR_INLINE float cr_mul(float a, float b) { CR_COUNT(CAROM_OP_MUL); return a * b; }
+CR_INLINE float cr_div(float a, float b) { CR_COUNT(CAROM_OP_DIV); return a / b; }
+CR_INLINE float cr_sqrt(float a) { CR_COUNT(CAROM_OP_SQRT); return sqrtf(a); }
 
-CR_INLINE int cr_lt(float a, float b) { CR_COUNT(CR_OP_CMP); return a < b; }
-CR_INLINE int cr_le(float a, float b) { CR_COUNT(CR_OP_CMP); return a <= b; }
-CR_INLINE int cr_gt(float a, float b) { CR_COUNT(CR_OP_CMP); return a > b; }
-CR_INLINE int cr_ge(float a, float b) { CR_COUNT(CR_OP_CMP); return a >= b; }
-CR_INLINE int cr_eq(float a, float b) { CR_COUNT(CR_OP_CMP); return a == b; }
+CR_INLINE int cr_lt(float a, float b) { CR_COUNT(CAROM_OP_CMP); return a < b; }
+CR_INLINE int cr_le(float a, float b) { CR_COUNT(CAROM_OP_CMP); return a <= b; }
+CR_INLINE int cr_gt(float a, float b) { CR_COUNT(CAROM_OP_CMP); return a > b; }
+CR_INLINE int cr_ge(float a, float b) { CR_COUNT(CAROM_OP_CMP); return a >= b; }
+CR_INLINE int cr_eq(float a, float b) { CR_COUNT(CAROM_OP_CMP); return a == b; }
 
-CR_INLINE float cr_min(float a, float b) { CR_COUNT(CR_OP_CMP); return a < b ? a : b; }
-CR_INLINE float cr_max(float a, float b) { CR_COUNT(CR_OP_CMP); return a > b ? a : b; }
-CR_INLINE float cr_abs(float a) { CR_COUNT(CR_OP_CMP); return a < 0.0f ? -a : a; }
+CR_INLINE float cr_min(float a, float b) { CR_COUNT(CAROM_OP_CMP); return a < b ? a : b; }
+CR_INLINE float cr_max(float a, float b) { CR_COUNT(CAROM_OP_CMP); return a > b ? a : b; }
+CR_INLINE float cr_abs(float a) { CR_COUNT(CAROM_OP_CMP); return a < 0.0f ? -a : a; }
 #endif
 CR_INLINE float cr_clamp(float a, float lo, float hi) { return cr_min(cr_max(a, lo), hi); }
 
@@ -116,10 +107,23 @@ CR_INLINE float cr_vdot(cr_v2 a, cr_v2 b) { return cr_add(cr_mul(a.x, b.x), cr_m
 CR_INLINE float cr_vcross(cr_v2 a, cr_v2 b) { return cr_sub(cr_mul(a.x, b.y), cr_mul(a.y, b.x)); }
 /* w x r for scalar angular velocity w: (-w r.y, w r.x) */
 CR_INLINE cr_v2 cr_vcross_sv(float w, cr_v2 r) { return cr_v(cr_neg(cr_mul(w, r.y)), cr_mul(w, r.x)); }
-/* perpendicular (rotated +90 deg); exact, not counted beyond the negation */
-CR_INLINE cr_v2 cr_vperp(cr_v2 a) { return cr_v(cr_neg(a.y), a.x); }
+/* the unit normal rotated -90 degrees: the tangent of a contact */
+CR_INLINE cr_v2 cr_vright(cr_v2 a) { return cr_v(a.y, cr_neg(a.x)); }
 CR_INLINE float cr_vlen2(cr_v2 a) { return cr_vdot(a, a); }
 CR_INLINE float cr_vlen(cr_v2 a) { return cr_sqrt(cr_vdot(a, a)); }
+
+/*
+ * Compensated (Kahan) accumulation: *sum += x, with *comp carrying the low
+ * bits the float sum dropped, so a long run of small increments (x += v dt
+ * over many steps) rounds once, not once per step. 4 operations.
+ */
+CR_INLINE void cr_kadd(float *sum, float *comp, float x)
+{
+    float y = cr_sub(x, *comp);
+    float t = cr_add(*sum, y);
+    *comp = cr_sub(cr_sub(t, *sum), y);
+    *sum = t;
+}
 
 /* ---- rotations (unit complex numbers) ------------------------------------ */
 

@@ -1,98 +1,267 @@
 /*
- * broadphase.c -- candidate pairs by sort and sweep.
+ * broadphase.c -- candidate pairs from a uniform grid, rebuilt each step.
  *
- * Each body's bounding box (grown by a margin that covers the step's
- * motion) is sorted by its lower x bound; a sweep then tests each box only
- * against the boxes that start before it ends. Cost: O(n log n) for the
- * sort plus O(n + k) for the sweep with k overlapping x intervals, instead
- * of the n (n - 1) / 2 of all pairs.
+ * The cell is twice the mean box size of the bodies; a body whose box fits
+ * in a cell is filed under the cell of its box centre, so two such boxes
+ * that overlap have centres in the same or adjacent cells: each cell is
+ * compared with itself and its four "forward" neighbours (right, and the
+ * three above), which finds every pair exactly once. Cells are hashed into
+ * a power-of-two table and filled by a counting sort, so the grid needs no
+ * allocation and no per-cell storage; items keep their cell coordinates, so
+ * two cells that share a bucket are told apart. Boxes larger than a cell
+ * ("big": walls, floors, long rods) are tested against the cells their box
+ * covers, or against all items when that is fewer.
  *
- * The sort is a bottom-up merge sort in caller storage: stable, so ties
- * keep body order and the result never depends on anything but the input.
- * Pairs come out sorted by (a, b), the order the solver visits them in.
+ * Cost: O(n) to build and O(n + pairs) to query, for any layout; the sort
+ * of pairs by (a, b) is two counting passes over body slots, also linear.
+ * Everything is deterministic: the same boxes give the same pairs in the
+ * same order.
  */
-#include "internal.h"
+#include "broadphase.h"
 
-/*
- * Bottom-up merge sort of n elements of TYPE in a, with scratch tmp of the
- * same size; stable: an element from the right run is taken only if it is
- * strictly LESS than the left one. Defined once, instantiated per type.
- */
-#define CR_DEFINE_MERGE_SORT(NAME, TYPE, LESS)                                \
-    static void NAME(TYPE *a, TYPE *tmp, int n)                               \
-    {                                                                         \
-        int width, i;                                                         \
-        TYPE *src = a, *dst = tmp, *swap;                                     \
-        for (width = 1; width < n; width *= 2) {                              \
-            for (i = 0; i < n; i += 2 * width) {                              \
-                int mid = i + width < n ? i + width : n;                      \
-                int hi = i + 2 * width < n ? i + 2 * width : n;               \
-                int l = i, r = mid, k = i;                                    \
-                while (l < mid && r < hi)                                     \
-                    dst[k++] = LESS(src[r], src[l]) ? src[r++] : src[l++];    \
-                while (l < mid)                                               \
-                    dst[k++] = src[l++];                                      \
-                while (r < hi)                                                \
-                    dst[k++] = src[r++];                                      \
-            }                                                                 \
-            swap = src;                                                       \
-            src = dst;                                                        \
-            dst = swap;                                                       \
-        }                                                                     \
-        if (src != a)                                                         \
-            for (i = 0; i < n; ++i)                                           \
-                a[i] = src[i];                                                \
-    }
+/* Cell coordinates are clamped here, so a huge coordinate over a tiny cell
+ * cannot overflow an int (clamped cells only cost extra candidates). */
+#define CR_CELL_LIMIT 1.0e9f
 
-/* proxies by lower x bound (a counted float compare) */
-#define CR_PROXY_LESS(x, y) cr_lt((x).lo_x, (y).lo_x)
-/* pairs by (a, b) */
-#define CR_PAIR_LESS(x, y) ((x).a < (y).a || ((x).a == (y).a && (x).b < (y).b))
-
-CR_DEFINE_MERGE_SORT(cr_sort_proxies, cr_proxy, CR_PROXY_LESS)
-CR_DEFINE_MERGE_SORT(cr_sort_pairs, cr_pair, CR_PAIR_LESS)
-
-/* Pairs of the boxes already in w->proxies (one per body, any order);
- * returns the number found (stored ones plus dropped ones). */
-int cr_broadphase_pairs(carom_world *w)
+int cr_boxes_overlap(const cr_box *p, const cr_box *q)
 {
-    int i, j, n = w->body_count, found = 0;
-    int cap = w->def.max_pairs;
-
-    cr_sort_proxies(w->proxies, w->proxy_tmp, n);
-
-    w->pair_count = 0;
-    for (i = 0; i < n; ++i) {
-        const cr_proxy *p = &w->proxies[i];
-        for (j = i + 1; j < n && cr_le(w->proxies[j].lo_x, p->hi_x); ++j) {
-            const cr_proxy *q = &w->proxies[j];
-            int a = p->body, b = q->body;
-            if (w->bodies[a].type == CAROM_BODY_STATIC &&
-                w->bodies[b].type == CAROM_BODY_STATIC)
-                continue;
-            if (cr_lt(q->hi_y, p->lo_y) || cr_lt(p->hi_y, q->lo_y))
-                continue;
-            ++found;
-            if (w->pair_count < cap) {
-                cr_pair pr;
-                pr.a = a < b ? a : b;
-                pr.b = a < b ? b : a;
-                w->pairs[w->pair_count++] = pr;
-            }
-        }
-    }
-    w->pairs_dropped = found - w->pair_count;
-    cr_sort_pairs(w->pairs, w->pair_tmp, w->pair_count);
-    return found;
+    return !(cr_lt(q->hi_x, p->lo_x) || cr_lt(p->hi_x, q->lo_x) ||
+             cr_lt(q->hi_y, p->lo_y) || cr_lt(p->hi_y, q->lo_y));
 }
 
-/* Pairs of the bodies' current boxes grown by margin. */
-int cr_broadphase(carom_world *w, float margin)
+int cr_broadphase_bucket_cap(int capacity)
+{
+    int n = 16;
+    while (n < 2 * capacity)
+        n *= 2;
+    return n;
+}
+
+/* floor(v), clamped, without libm */
+static int cr_cell_of(float v)
 {
     int i;
-    for (i = 0; i < w->body_count; ++i) {
-        cr_body_bounds(&w->bodies[i], margin, &w->proxies[i]);
-        w->proxies[i].body = i;
+    v = cr_clamp(v, cr_neg(CR_CELL_LIMIT), CR_CELL_LIMIT);
+    i = (int)v;
+    if (cr_lt(v, (float)i))
+        --i;
+    return i;
+}
+
+static unsigned cr_hash(int cx, int cy)
+{
+    return (unsigned)cx * 73856093u ^ (unsigned)cy * 19349663u;
+}
+
+static int cr_bucket(const cr_broadphase *bp, int cx, int cy)
+{
+    return (int)(cr_hash(cx, cy) & (unsigned)(bp->buckets - 1));
+}
+
+void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
+                         const int *bodies, int n)
+{
+    int i, grid = 0, big = 0;
+    float sum = 0.0f, cell;
+
+    /* the cell: twice the mean box size (largest side) */
+    for (i = 0; i < n; ++i) {
+        const cr_box *b = &boxes[bodies[i]];
+        sum = cr_add(sum, cr_max(cr_sub(b->hi_x, b->lo_x), cr_sub(b->hi_y, b->lo_y)));
     }
-    return cr_broadphase_pairs(w);
+    cell = n > 0 ? cr_mul(2.0f, cr_div(sum, (float)n)) : 1.0f;
+    if (!cr_gt(cell, 0.0f) || !cr_finite(cell))
+        cell = 1.0f;
+    bp->cell = cell;
+    bp->inv_cell = cr_div(1.0f, cell);
+    bp->buckets = cr_broadphase_bucket_cap(n);
+
+    /* grid items to tmp (counted per bucket), big ones to the end */
+    for (i = 0; i <= bp->buckets; ++i)
+        bp->start[i] = 0;
+    for (i = 0; i < n; ++i) {
+        const cr_box *b = &boxes[bodies[i]];
+        cr_proxy p;
+        p.box = *b;
+        p.body = bodies[i];
+        if (cr_gt(cr_sub(b->hi_x, b->lo_x), cell) ||
+            cr_gt(cr_sub(b->hi_y, b->lo_y), cell)) {
+            p.cx = p.cy = 0;
+            bp->proxies[n - 1 - big++] = p;
+            continue;
+        }
+        p.cx = cr_cell_of(cr_mul(cr_mul(0.5f, cr_add(b->lo_x, b->hi_x)), bp->inv_cell));
+        p.cy = cr_cell_of(cr_mul(cr_mul(0.5f, cr_add(b->lo_y, b->hi_y)), bp->inv_cell));
+        bp->tmp[grid++] = p;
+        ++bp->start[cr_bucket(bp, p.cx, p.cy) + 1];
+    }
+    for (i = 0; i < bp->buckets; ++i)
+        bp->start[i + 1] += bp->start[i];
+    /* scatter, stable: counts become running positions, then restore */
+    for (i = 0; i < grid; ++i) {
+        int k = cr_bucket(bp, bp->tmp[i].cx, bp->tmp[i].cy);
+        bp->proxies[bp->start[k]++] = bp->tmp[i];
+    }
+    for (i = bp->buckets; i > 0; --i)
+        bp->start[i] = bp->start[i - 1];
+    bp->start[0] = 0;
+    bp->grid_count = grid;
+    bp->big_count = big;
+    /* big proxies were stored from the end backwards: restore body order */
+    for (i = 0; i < big / 2; ++i) {
+        cr_proxy t = bp->proxies[grid + i];
+        bp->proxies[grid + i] = bp->proxies[n - 1 - i];
+        bp->proxies[n - 1 - i] = t;
+    }
+}
+
+typedef struct cr_pair_out {
+    cr_pair *out;
+    int cap;
+    long found;
+    cr_pair_accept_fn accept;
+    void *ctx;
+} cr_pair_out;
+
+static void cr_emit(cr_pair_out *o, const cr_box *boxes, int a, int b)
+{
+    cr_pair *p;
+    if (a == b || !cr_boxes_overlap(&boxes[a], &boxes[b]) || !o->accept(o->ctx, a, b))
+        return;
+    if (o->found++ >= (long)o->cap)
+        return;
+    p = &o->out[o->found - 1];
+    p->a = a < b ? a : b;
+    p->b = a < b ? b : a;
+    p->contact = -1;
+    p->next_a = p->next_b = -1;
+    p->stamp = 0;
+    p->va = p->vb = -1;
+    p->mark = 0;
+    p->met = 0;
+    p->solved = 0;
+    p->toi = 0.0f;
+}
+
+/* Pairs of grid item i with the items of cell (cx, cy). */
+static void cr_cell_pairs(const cr_broadphase *bp, const cr_box *boxes, int i,
+                          int cx, int cy, cr_pair_out *o)
+{
+    int k = cr_bucket(bp, cx, cy), j;
+    for (j = bp->start[k]; j < bp->start[k + 1]; ++j) {
+        const cr_proxy *q = &bp->proxies[j];
+        if (q->cx == cx && q->cy == cy)
+            cr_emit(o, boxes, bp->proxies[i].body, q->body);
+    }
+}
+
+long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
+                         cr_pair_accept_fn accept, void *ctx, cr_pair *out,
+                         int cap)
+{
+    cr_pair_out o;
+    int i, j, n = bp->grid_count + bp->big_count;
+    o.out = out;
+    o.cap = cap;
+    o.found = 0;
+    o.accept = accept;
+    o.ctx = ctx;
+    for (i = 0; i < bp->grid_count; ++i) {
+        const cr_proxy *p = &bp->proxies[i];
+        int k = cr_bucket(bp, p->cx, p->cy);
+        /* the same cell: later items of the bucket only */
+        for (j = i + 1; j < bp->start[k + 1]; ++j) {
+            const cr_proxy *q = &bp->proxies[j];
+            if (q->cx == p->cx && q->cy == p->cy)
+                cr_emit(&o, boxes, p->body, q->body);
+        }
+        cr_cell_pairs(bp, boxes, i, p->cx + 1, p->cy, &o);
+        cr_cell_pairs(bp, boxes, i, p->cx - 1, p->cy + 1, &o);
+        cr_cell_pairs(bp, boxes, i, p->cx, p->cy + 1, &o);
+        cr_cell_pairs(bp, boxes, i, p->cx + 1, p->cy + 1, &o);
+    }
+    /* big boxes: against each other, then against the grid */
+    for (i = bp->grid_count; i < n; ++i) {
+        const cr_proxy *p = &bp->proxies[i];
+        for (j = i + 1; j < n; ++j)
+            cr_emit(&o, boxes, p->body, bp->proxies[j].body);
+    }
+    for (i = bp->grid_count; i < n; ++i) {
+        const cr_box *q = &bp->proxies[i].box;
+        /* items whose centre is within half a cell of the box */
+        float half = cr_mul(0.5f, bp->cell);
+        int x0 = cr_cell_of(cr_mul(cr_sub(q->lo_x, half), bp->inv_cell));
+        int x1 = cr_cell_of(cr_mul(cr_add(q->hi_x, half), bp->inv_cell));
+        int y0 = cr_cell_of(cr_mul(cr_sub(q->lo_y, half), bp->inv_cell));
+        int y1 = cr_cell_of(cr_mul(cr_add(q->hi_y, half), bp->inv_cell));
+        long cells = ((long)x1 - x0 + 1) * ((long)y1 - y0 + 1);
+        if (cells > (long)bp->grid_count) {
+            for (j = 0; j < bp->grid_count; ++j)
+                cr_emit(&o, boxes, bp->proxies[i].body, bp->proxies[j].body);
+        } else {
+            int cx, cy;
+            for (cy = y0; cy <= y1; ++cy)
+                for (cx = x0; cx <= x1; ++cx)
+                    cr_cell_pairs(bp, boxes, i, cx, cy, &o);
+        }
+    }
+    return o.found;
+}
+
+int cr_broadphase_query(const cr_broadphase *bp, const cr_box *boxes,
+                        const cr_box *q, cr_query_fn fn, void *ctx)
+{
+    int i, n = bp->grid_count + bp->big_count;
+    /* grid items may reach half a cell beyond their centre's cell */
+    float half = cr_mul(0.5f, bp->cell);
+    int x0 = cr_cell_of(cr_mul(cr_sub(q->lo_x, half), bp->inv_cell));
+    int x1 = cr_cell_of(cr_mul(cr_add(q->hi_x, half), bp->inv_cell));
+    int y0 = cr_cell_of(cr_mul(cr_sub(q->lo_y, half), bp->inv_cell));
+    int y1 = cr_cell_of(cr_mul(cr_add(q->hi_y, half), bp->inv_cell));
+    long cells = ((long)x1 - x0 + 1) * ((long)y1 - y0 + 1);
+    if (cells > (long)bp->grid_count) {
+        for (i = 0; i < bp->grid_count; ++i)
+            if (cr_boxes_overlap(q, &boxes[bp->proxies[i].body]) &&
+                !fn(ctx, bp->proxies[i].body))
+                return 0;
+    } else {
+        int cx, cy;
+        for (cy = y0; cy <= y1; ++cy)
+            for (cx = x0; cx <= x1; ++cx) {
+                int k = cr_bucket(bp, cx, cy), j;
+                for (j = bp->start[k]; j < bp->start[k + 1]; ++j) {
+                    const cr_proxy *p = &bp->proxies[j];
+                    if (p->cx == cx && p->cy == cy &&
+                        cr_boxes_overlap(q, &boxes[p->body]) && !fn(ctx, p->body))
+                        return 0;
+                }
+            }
+    }
+    for (i = bp->grid_count; i < n; ++i)
+        if (cr_boxes_overlap(q, &boxes[bp->proxies[i].body]) &&
+            !fn(ctx, bp->proxies[i].body))
+            return 0;
+    return 1;
+}
+
+void cr_pairs_sort(cr_pair *pairs, cr_pair *tmp, int n, int *count, int slots)
+{
+    int i;
+    /* by b into tmp, then stably by a back into pairs */
+    for (i = 0; i <= slots; ++i)
+        count[i] = 0;
+    for (i = 0; i < n; ++i)
+        ++count[pairs[i].b + 1];
+    for (i = 0; i < slots; ++i)
+        count[i + 1] += count[i];
+    for (i = 0; i < n; ++i)
+        tmp[count[pairs[i].b]++] = pairs[i];
+    for (i = 0; i <= slots; ++i)
+        count[i] = 0;
+    for (i = 0; i < n; ++i)
+        ++count[tmp[i].a + 1];
+    for (i = 0; i < slots; ++i)
+        count[i + 1] += count[i];
+    for (i = 0; i < n; ++i)
+        pairs[count[tmp[i].a]++] = tmp[i];
 }

@@ -1,333 +1,773 @@
 /*
- * events.c -- the events method: every impact at its instant, in time order.
+ * events.c -- the events methods: every impact at its instant, in time
+ * order.
  *
- * One step:
- *   1. Every dynamic body gets its drift for the step: the Verlet parabola
- *      with acceleration a0 + a_c (forces and last step's resting contact
- *      forces, integrate.c), from local time 0.
- *   2. Broadphase over the boxes each body sweeps in the step.
- *   3. For every candidate pair, its first impact in [0, dt] (toi.c),
- *      unless the early-out rules it out: the distance of the centres at
- *      their time of closest approach (the note's question) exceeds the sum
- *      of the bodies' reaches.
- *   4. Repeatedly take the earliest impact (ties: lowest body pair), move
- *      only its two bodies to that instant, apply the impulse, and recompute
- *      the impacts of every pair involving either body from that instant.
- *      Bodies without impacts are never touched: they follow their drift.
- *   5. At dt every body is advanced to the end of the step and its velocity
- *      finished the Verlet way, v1 = v(dt) - a_c dt + (a1 - a0) dt / 2, with
- *      a1 the forces at the new positions.
- *   6. Resting contacts are not impacts: pairs touching, or arriving,
- *      with an approach slower than rest_speed. The solver handles them at
- *      the end of the step exactly as in the discrete method, and would
- *      also catch an impact the loop missed (recorded at the step's end).
+ * Within each contact substep (solver.c) the bodies move along drifts: a
+ * body in resting contact from its start velocity to its solved velocity,
+ * a free body along its Verlet parabola. This module is that motion: it
+ * keeps, for every candidate pair that the contact solver does not take
+ * (pairs apart, or approaching faster than the rest speed), the instant of
+ * its next impact (toi.c), in a binary heap; it takes the earliest impact,
+ * moves only the bodies involved to that instant, solves it, and searches
+ * again only the pairs of those bodies. Bodies without impacts are never
+ * touched: they follow their drifts exactly. The cost of an impact is the
+ * number of pairs of its bodies, not the number of pairs in the world.
  *
- * Ordering: impacts at equal times are taken in (body_a, body_b) order, one
- * pair at a time, so a row of touching balls hit at one end passes the
- * impulse along pair by pair (Newton's cradle), deterministically.
+ * Simultaneous impacts. Impacts at the same instant (within
+ * CAROM_SIMULTANEOUS_TIME_TOL of the step) are solved together, with the
+ * resting contacts that link their bodies (a ball striking a stack meets
+ * the whole stack, through the contacts, up to
+ * CAROM_IMPACT_ISLAND_MAX_BODIES bodies): one small problem
+ *     vn+ >= target, impulse >= 0, one of them tight, at every contact,
+ * target = e vn- (Newton) where the approach vn- exceeds the rest speed and
+ * 0 elsewhere, with Coulomb friction, iterated to convergence. The result
+ * does not depend on the order of the bodies (to rounding), so a
+ * mirror-symmetric scene stays symmetric; impacts that are not simultaneous
+ * (Newton's cradle with gaps, the pi billiard) are taken one by one.
  *
- * Bounds: the loop processes at most max_events impacts per step. At the
- * cap, motion stops at the instant of the first impact not taken: every
- * body is advanced to that instant only (the rest of the step's motion is
- * dropped, so nothing passes through an impact it was not given), the
- * pending impacts are taken at the start of the next step, and the step
- * returns CAROM_ERR_EVENT_CAPACITY.
+ * After an impact the bodies keep touching where they touch: for the rest
+ * of the substep their drifts are corrected so that no touching contact of
+ * the island closes in (an inelastic landing stays on the floor however
+ * long the step), and the contact joins the solver at the next substep.
+ *
+ * Budget: after max_impacts impacts in a step the rest of the step's
+ * contacts are solved together by the contact solver, with restitution at
+ * the end of the step, as in the discrete method (counted in
+ * carom_stats.budget_steps). Momentum is conserved either way.
  */
-#include "internal.h"
+#include "events.h"
+
+#include "narrowphase.h"
+#include "solver.h"
+#include "toi.h"
 
 #if CAROM_ENABLE_EVENTS
 
-#define CR_NO_IMPACT 3.0e38f
+/* Convergence of a simultaneous impact solve: the largest impulse change of
+ * a sweep, relative to the largest impulse. */
+#define CR_ISLAND_TOL 1.0e-6f
 
-/* Contact closer than this fraction of linear_slop counts as touching. */
+/* Approach below this fraction of the bodies' speeds is rounding. */
+#define CR_APPROACH_REL_TOL 1.0e-5f
+
+/* Touching: within this fraction of the slop (time of impact search). */
 #define CR_TOUCH_FRACTION 0.01f
 
-/*
- * The note's early-out: over [t0, t1], can the two bodies' bounding circles
- * meet at all? With d(s) = p + u s + q s^2, |d(s)| >= |p + u s| - |q| h^2;
- * the first term is smallest at the time of closest approach
- * s_c = -p.u / |u|^2, clamped to [0, h].
- */
-static int cr_cannot_meet(const cr_body *A, const cr_body *B, float t0,
-                          float t1)
+/* Smallest det(K) / (k11 k22) for which a 2-point row is solved as a block
+ * (1 - cos^2 of the angle between the two points' impulse rows). */
+#define CR_BLOCK_MIN_DET 1.0e-3f
+
+#endif
+
+static int cr_moving(const cr_body *b)
 {
-    cr_v2 xa, xb, p, u, q;
-    cr_rot ra, rb;
-    float h = cr_sub(t1, t0), uu, sc, dist, reach;
-    cr_body_pose(A, t0, &xa, &ra);
-    cr_body_pose(B, t0, &xb, &rb);
-    p = cr_vsub(xb, xa);
-    u = cr_vsub(cr_vmadd(B->vel, cr_sub(t0, B->t_sync), B->acc_d),
-                cr_vmadd(A->vel, cr_sub(t0, A->t_sync), A->acc_d));
-    q = cr_vscale(0.5f, cr_vsub(B->acc_d, A->acc_d));
-    uu = cr_vdot(u, u);
-    sc = cr_gt(uu, 0.0f) ? cr_clamp(cr_neg(cr_div(cr_vdot(p, u), uu)), 0.0f, h)
-                         : 0.0f;
-    dist = cr_sub(cr_vlen(cr_vmadd(p, sc, u)), cr_mul(cr_vlen(q), cr_mul(h, h)));
-    reach = cr_add(A->extent, B->extent);
-    return cr_gt(dist, reach);
+    return b->type != CAROM_BODY_STATIC && (b->flags & CR_BODY_AWAKE);
 }
 
-/* Next impact of pair k at or after t0 (local time), or CR_NO_IMPACT. */
-static float cr_pair_next_impact(carom_world *w, int k, float t0)
+void cr_pairs_link(carom_world *w)
 {
-    const cr_body *A = &w->bodies[w->pairs[k].a];
-    const cr_body *B = &w->bodies[w->pairs[k].b];
-    float dt = w->def.dt, slop = w->def.linear_slop, toi, sep;
-    cr_body a = *A, b = *B;
-
-    ++w->toi_queries;
-    if (cr_cannot_meet(A, B, t0, dt)) {
-        ++w->toi_early_outs;
-        return CR_NO_IMPACT;
+    int i;
+    for (i = 0; i < w->slot_count; ++i)
+        w->pair_head[i] = -1;
+    for (i = w->pair_count - 1; i >= 0; --i) {
+        cr_pair *p = &w->pairs[i];
+        p->next_a = w->pair_head[p->a];
+        w->pair_head[p->a] = i;
+        p->next_b = w->pair_head[p->b];
+        w->pair_head[p->b] = i;
     }
-    cr_body_pose(A, t0, &a.x, &a.q);
-    cr_body_pose(B, t0, &b.x, &b.q);
-    sep = cr_separation(&a, &b);
+}
+
+void cr_drifts_begin(carom_world *w)
+{
+    int i;
+    for (i = 0; i < w->slot_count; ++i) {
+        cr_drift *d = &w->drift[i];
+        const cr_body *b = &w->bodies[i];
+        d->t = 0.0f;
+        d->alpha = 0.0f;
+        d->a = cr_v(0.0f, 0.0f);
+        if (b->type == CAROM_BODY_DYNAMIC && (b->flags & CR_BODY_AWAKE)) {
+            d->a = b->a;
+            d->alpha = b->alpha;
+        }
+        ++d->version;
+    }
+}
+
+void cr_sync_all(carom_world *w, float t)
+{
+    int i;
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        cr_sync(&w->bodies[id], &w->drift[id], t);
+    }
+}
+
+#if CAROM_ENABLE_EVENTS
+
+static cr_mover cr_mover_of(const carom_world *w, int i)
+{
+    cr_mover m;
+    m.s = &w->info[i].shape;
+    m.b = &w->bodies[i];
+    m.d = &w->drift[i];
+    return m;
+}
+
+/* ---- the heap of impact times ---------------------------------------------- */
+
+static int cr_entry_less(const cr_heap_entry *x, const cr_heap_entry *y)
+{
+    /* earliest first; at equal times the lower pair, so the order never
+     * depends on how the heap was filled */
+    return cr_lt(x->t, y->t) || (cr_eq(x->t, y->t) && x->pair < y->pair);
+}
+
+static void cr_heap_sift_down(carom_world *w, int i)
+{
+    cr_heap_entry *h = w->heap;
+    int n = w->heap_count;
+    for (;;) {
+        int l = 2 * i + 1, r = l + 1, m = i;
+        cr_heap_entry t;
+        if (l < n && cr_entry_less(&h[l], &h[m]))
+            m = l;
+        if (r < n && cr_entry_less(&h[r], &h[m]))
+            m = r;
+        if (m == i)
+            return;
+        t = h[i];
+        h[i] = h[m];
+        h[m] = t;
+        i = m;
+    }
+}
+
+static void cr_heap_sift_up(carom_world *w, int i)
+{
+    cr_heap_entry *h = w->heap;
+    while (i > 0) {
+        int parent = (i - 1) / 2;
+        cr_heap_entry t;
+        if (!cr_entry_less(&h[i], &h[parent]))
+            return;
+        t = h[i];
+        h[i] = h[parent];
+        h[parent] = t;
+        i = parent;
+    }
+}
+
+static void cr_heap_pop(carom_world *w)
+{
+    w->heap[0] = w->heap[--w->heap_count];
+    cr_heap_sift_down(w, 0);
+}
+
+/* Rebuild from the pairs' current times (drops every stale entry). */
+static void cr_heap_rebuild(carom_world *w)
+{
+    int i;
+    w->heap_count = 0;
+    for (i = 0; i < w->pair_count; ++i) {
+        const cr_pair *p = &w->pairs[i];
+        if (!cr_le(p->toi, w->def.dt))
+            continue;
+        w->heap[w->heap_count].t = p->toi;
+        w->heap[w->heap_count].pair = i;
+        w->heap[w->heap_count].stamp = p->stamp;
+        ++w->heap_count;
+    }
+    for (i = w->heap_count / 2 - 1; i >= 0; --i)
+        cr_heap_sift_down(w, i);
+}
+
+static void cr_heap_push(carom_world *w, int pair)
+{
+    const cr_pair *p = &w->pairs[pair];
+    if (w->heap_count >= w->heap_cap) {
+        cr_heap_rebuild(w); /* holds at most one entry per pair */
+        return;
+    }
+    w->heap[w->heap_count].t = p->toi;
+    w->heap[w->heap_count].pair = pair;
+    w->heap[w->heap_count].stamp = p->stamp;
+    cr_heap_sift_up(w, w->heap_count++);
+}
+
+/* ---- searching a pair ------------------------------------------------------- */
+
+static int cr_solved_contact(const carom_world *w, const cr_pair *p)
+{
+    return p->contact >= 0 && (w->contacts[p->contact].flags & CR_CONTACT_SOLVE);
+}
+
+/* The approach speed above which the pair is an impact. */
+static float cr_impact_speed(const carom_world *w, int a, int b, float scale)
+{
+    return cr_add(cr_rest_speed(w, a, b), cr_mul(CR_APPROACH_REL_TOL, scale));
+}
+
+/* Next impact of pair k from local time t0: into p->toi and the heap. */
+static void cr_pair_search(carom_world *w, int k, float t0)
+{
+    cr_pair *p = &w->pairs[k];
+    cr_mover A, B;
+    float dt = w->def.dt, slop = w->scale.slop, toi, sep, scale, approach;
+    cr_v2 xa, xb;
+    cr_rot qa, qb;
+
+    ++p->stamp;
+    p->toi = CR_NEVER;
+    p->va = w->drift[p->a].version;
+    p->vb = w->drift[p->b].version;
+    p->solved = cr_solved_contact(w, p);
+    if (p->solved ||
+        (!cr_moving(&w->bodies[p->a]) && !cr_moving(&w->bodies[p->b])))
+        return;
+    A = cr_mover_of(w, p->a);
+    B = cr_mover_of(w, p->b);
+    ++w->stats.toi_queries;
+    if (cr_cannot_meet(&A, &B, t0, dt, slop)) {
+        ++w->stats.toi_early_outs;
+        return;
+    }
+    cr_pose_at(A.b, A.d, t0, &xa, &qa);
+    cr_pose_at(B.b, B.d, t0, &xb, &qb);
+    if (A.b->type == CAROM_BODY_STATIC) {
+        xa = A.b->x;
+        qa = A.b->q;
+    }
+    if (B.b->type == CAROM_BODY_STATIC) {
+        xb = B.b->x;
+        qb = B.b->q;
+    }
+    sep = cr_separation(A.s, xa, qa, B.s, xb, qb);
     if (cr_le(sep, cr_mul(CR_TOUCH_FRACTION, slop))) {
-        /* touching now: an impact at once if approaching fast, otherwise a
-         * resting contact, left to the solver at the end of the step */
-        return cr_gt(cr_approach_speed_at(A, B, t0, slop, dt),
-                     cr_impact_threshold(A, B, w->def.rest_speed))
-                   ? t0
-                   : CR_NO_IMPACT;
+        /* touching now: an impact at once if approaching fast; otherwise
+         * a contact for the solver from the next substep */
+        approach = cr_approach_speed(&A, &B, t0, slop, &scale);
+        if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale)))
+            p->toi = t0;
+        else
+            p->met = 1;
+    } else if (cr_time_of_impact(&A, &B, t0, dt,
+                                 cr_mul(CAROM_TOI_TOLERANCE, slop), &toi)) {
+        /* arriving slower than the rest speed is coming to rest, not an
+         * impact: the contact solver takes it */
+        approach = cr_approach_speed(&A, &B, toi, slop, &scale);
+        if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale)))
+            p->toi = toi;
+        else
+            p->met = 1;
     }
-    if (!cr_time_of_impact(A, B, t0, dt, cr_mul(CAROM_TOI_TOLERANCE, slop), dt, &toi))
-        return CR_NO_IMPACT;
-    /* arriving slower than rest_speed is coming to rest, not an impact:
-     * the solver takes it at the end of the step. (Taking such arrivals as
-     * impacts would never end where bodies press on each other: each
-     * inelastic impulse starts the next approach, an inelastic collapse.) */
-    if (!cr_gt(cr_approach_speed_at(A, B, toi, slop, dt),
-               cr_impact_threshold(A, B, w->def.rest_speed)))
-        return CR_NO_IMPACT;
-    return toi;
+    if (cr_le(p->toi, dt))
+        cr_heap_push(w, k);
 }
 
-/* Apply the impact of pair k at local time t; 1 if there was one. */
-static int cr_impact(carom_world *w, int k, float t, float t_start)
+void cr_events_begin(carom_world *w)
 {
-    int a = w->pairs[k].a, b = w->pairs[k].b;
-    cr_body *A = &w->bodies[a], *B = &w->bodies[b];
-    cr_manifold m;
-    float impulse, approach;
-    carom_event *e;
+    int k;
+    w->heap_count = 0;
+    w->regrown_count = 0;
+    for (k = 0; k < w->pair_count; ++k)
+        cr_pair_search(w, k, 0.0f);
+}
 
-    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
-    cr_body_sync(A, t);
-    cr_body_sync(B, t);
-    CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
-    if (!cr_collide(A, B, w->def.linear_slop, &m))
-        return 0;
-    m.a = a;
-    m.b = b;
-    CR_PHASE(w, CAROM_PHASE_IMPULSES);
-    impulse = cr_solver_impact(w, &m, &approach);
-    if (!cr_gt(impulse, 0.0f))
-        return 0;
-    /* the resting share of later contacts is judged from here on */
-    A->vel_saved = cr_vmadd(A->vel, cr_neg(t), A->acc_c);
-    A->w_saved = cr_sub(A->w, cr_mul(t, A->alpha_c));
-    B->vel_saved = cr_vmadd(B->vel, cr_neg(t), B->acc_c);
-    B->w_saved = cr_sub(B->w, cr_mul(t, B->alpha_c));
-    if (w->event_count >= w->def.max_events) {
-        ++w->events_dropped;
-        return 1;
+void cr_events_refresh(carom_world *w, float t)
+{
+    int k;
+    if (w->method == CAROM_METHOD_FIRST_IMPACT)
+        return; /* the note's method: each pair's first impact, found once */
+    for (k = 0; k < w->pair_count; ++k) {
+        cr_pair *p = &w->pairs[k];
+        /* a body's drift changed, or the contact changed hands between
+         * the solver and the impacts */
+        if (p->va != w->drift[p->a].version || p->vb != w->drift[p->b].version ||
+            p->solved != cr_solved_contact(w, p))
+            cr_pair_search(w, k, t);
     }
-    e = &w->events[w->event_count++];
-    e->t = cr_add(t_start, t);
-    e->body_a = a;
-    e->body_b = b;
-    e->normal = m.n;
-    e->impulse = impulse;
-    e->approach_speed = approach;
+}
+
+/* ---- growing a body's box after an impact ----------------------------------- */
+
+typedef struct cr_regrow_ctx {
+    carom_world *w;
+    int body;
+    float t;
+    carom_status st;
+} cr_regrow_ctx;
+
+static int cr_has_pair(const carom_world *w, int a, int b)
+{
+    int k = w->pair_head[a];
+    while (k >= 0) {
+        const cr_pair *p = &w->pairs[k];
+        if ((p->a == a && p->b == b) || (p->a == b && p->b == a))
+            return 1;
+        k = p->a == a ? p->next_a : p->next_b;
+    }
+    return 0;
+}
+
+static int cr_regrow_visit(void *ctx, int other)
+{
+    cr_regrow_ctx *c = (cr_regrow_ctx *)ctx;
+    carom_world *w = c->w;
+    int a = c->body < other ? c->body : other;
+    int b = c->body < other ? other : c->body;
+    cr_pair *p;
+    if (other == c->body || cr_has_pair(w, a, b))
+        return 1;
+    if (w->bodies[a].type == CAROM_BODY_STATIC && w->bodies[b].type == CAROM_BODY_STATIC)
+        return 1;
+    if (w->pair_count >= w->def.max_pairs) {
+        c->st = CAROM_ERR_PAIR_CAPACITY;
+        return 0;
+    }
+    p = &w->pairs[w->pair_count];
+    p->a = a;
+    p->b = b;
+    p->contact = -1;
+    p->stamp = 0;
+    p->va = p->vb = -1;
+    p->mark = 0;
+    p->met = 0;
+    p->toi = CR_NEVER;
+    p->next_a = w->pair_head[a];
+    w->pair_head[a] = w->pair_count;
+    p->next_b = w->pair_head[b];
+    w->pair_head[b] = w->pair_count;
+    cr_pair_search(w, w->pair_count++, c->t);
     return 1;
 }
 
-static int cr_box_contains(const cr_proxy_box *outer, const cr_proxy *inner)
+/* An impulse can send a body out of the box it was expected to sweep (a
+ * light ball struck by a heavy one): grow the box, and add the pairs the
+ * larger box makes, so no impact is missed for want of a candidate pair. */
+static carom_status cr_regrow(carom_world *w, int i, float t)
 {
-    return cr_le(outer->lo_x, inner->lo_x) && cr_ge(outer->hi_x, inner->hi_x) &&
-           cr_le(outer->lo_y, inner->lo_y) && cr_ge(outer->hi_y, inner->hi_y);
+    cr_mover m = cr_mover_of(w, i);
+    cr_box now, *box = &w->boxes[i];
+    cr_regrow_ctx ctx;
+    int j;
+    cr_swept_box(&m, t, w->def.dt, w->scale.spec, &now);
+    if (cr_le(box->lo_x, now.lo_x) && cr_ge(box->hi_x, now.hi_x) &&
+        cr_le(box->lo_y, now.lo_y) && cr_ge(box->hi_y, now.hi_y))
+        return CAROM_OK;
+    box->lo_x = cr_min(box->lo_x, now.lo_x);
+    box->lo_y = cr_min(box->lo_y, now.lo_y);
+    box->hi_x = cr_max(box->hi_x, now.hi_x);
+    box->hi_y = cr_max(box->hi_y, now.hi_y);
+    ctx.w = w;
+    ctx.body = i;
+    ctx.t = t;
+    ctx.st = CAROM_OK;
+    cr_broadphase_query(&w->bp, w->boxes, box, cr_regrow_visit, &ctx);
+    /* bodies that grew earlier may reach beyond their grid cells */
+    for (j = 0; j < w->regrown_count && ctx.st == CAROM_OK; ++j)
+        if (cr_boxes_overlap(box, &w->boxes[w->regrown[j]]))
+            cr_regrow_visit(&ctx, w->regrown[j]);
+    for (j = 0; j < w->regrown_count; ++j)
+        if (w->regrown[j] == i)
+            break;
+    if (j == w->regrown_count && w->regrown_count < w->def.max_bodies)
+        w->regrown[w->regrown_count++] = i;
+    return ctx.st;
 }
 
-static int cr_boxes_overlap(const cr_proxy_box *p, const cr_proxy_box *q)
+/* ---- simultaneous impacts --------------------------------------------------- */
+
+static float cr_lever_n(const carom_world *w, int body, cr_v2 r, cr_v2 n)
 {
-    return !(cr_lt(q->hi_x, p->lo_x) || cr_lt(p->hi_x, q->lo_x) ||
-             cr_lt(q->hi_y, p->lo_y) || cr_lt(p->hi_y, q->lo_y));
+    return w->info[body].shape.kind == CAROM_SHAPE_CIRCLE ? 0.0f : cr_vcross(r, n);
 }
 
-static void cr_set_box(cr_proxy_box *box, const cr_proxy *p)
+static void cr_row_apply(carom_world *w, const cr_impact_row *r, int k,
+                         cr_v2 dir, float la, float lb, float P)
 {
-    box->lo_x = p->lo_x;
-    box->hi_x = p->hi_x;
-    box->lo_y = p->lo_y;
-    box->hi_y = p->hi_y;
+    cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
+    cr_v2 I = cr_vscale(P, dir);
+    (void)k;
+    A->v = cr_vmadd(A->v, cr_neg(A->inv_m), I);
+    B->v = cr_vmadd(B->v, B->inv_m, I);
+#if CAROM_ENABLE_ROTATION
+    A->w = cr_sub(A->w, cr_mul(A->inv_I, cr_mul(la, P)));
+    B->w = cr_add(B->w, cr_mul(B->inv_I, cr_mul(lb, P)));
+#else
+    (void)la;
+    (void)lb;
+#endif
+}
+
+static float cr_row_vn(const carom_world *w, const cr_impact_row *r, int k,
+                       cr_v2 dir)
+{
+    const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
+    return cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, r->rb[k]),
+                           cr_point_velocity(A->v, A->w, r->ra[k])),
+                   dir);
+}
+
+/* One sweep over a row: friction, then the normal impulses (a 2-point row
+ * as a block when well conditioned). Returns the largest impulse change. */
+static float cr_row_sweep(carom_world *w, cr_impact_row *r)
+{
+    const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
+    cr_v2 t = cr_vright(r->n);
+    float change = 0.0f;
+    int k;
+#if CAROM_ENABLE_FRICTION
+    if (cr_gt(r->friction, 0.0f))
+        for (k = 0; k < r->count; ++k) {
+            float vt = cr_row_vn(w, r, k, t);
+            float limit = cr_mul(r->friction, r->pn[k]);
+            float pt = cr_clamp(cr_sub(r->pt[k], cr_mul(r->mass_t[k], vt)),
+                                cr_neg(limit), limit);
+            float d = cr_sub(pt, r->pt[k]);
+            r->pt[k] = pt;
+            cr_row_apply(w, r, k, t, cr_vcross(r->ra[k], t), cr_vcross(r->rb[k], t), d);
+            change = cr_max(change, cr_abs(d));
+        }
+#endif
+    if (r->count == 2) {
+        float l1a = cr_lever_n(w, r->a, r->ra[0], r->n), l1b = cr_lever_n(w, r->b, r->rb[0], r->n);
+        float l2a = cr_lever_n(w, r->a, r->ra[1], r->n), l2b = cr_lever_n(w, r->b, r->rb[1], r->n);
+        float lin = cr_add(A->inv_m, B->inv_m);
+        float k11 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(l1a, l1a)),
+                                       cr_mul(B->inv_I, cr_mul(l1b, l1b))));
+        float k22 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(l2a, l2a)),
+                                       cr_mul(B->inv_I, cr_mul(l2b, l2b))));
+        float k12 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(l1a, l2a)),
+                                       cr_mul(B->inv_I, cr_mul(l1b, l2b))));
+        float det = cr_sub(cr_mul(k11, k22), cr_mul(k12, k12));
+        if (cr_gt(det, cr_mul(CR_BLOCK_MIN_DET, cr_mul(k11, k22)))) {
+            float a1 = r->pn[0], a2 = r->pn[1], x1, x2;
+            float b1 = cr_sub(cr_sub(cr_row_vn(w, r, 0, r->n), r->target[0]),
+                              cr_add(cr_mul(k11, a1), cr_mul(k12, a2)));
+            float b2 = cr_sub(cr_sub(cr_row_vn(w, r, 1, r->n), r->target[1]),
+                              cr_add(cr_mul(k12, a1), cr_mul(k22, a2)));
+            if (cr_lcp2(k11, k12, k22, b1, b2, &x1, &x2)) {
+                r->pn[0] = x1;
+                r->pn[1] = x2;
+                cr_row_apply(w, r, 0, r->n, l1a, l1b, cr_sub(x1, a1));
+                cr_row_apply(w, r, 1, r->n, l2a, l2b, cr_sub(x2, a2));
+                return cr_max(change, cr_max(cr_abs(cr_sub(x1, a1)),
+                                             cr_abs(cr_sub(x2, a2))));
+            }
+        }
+    }
+    for (k = 0; k < r->count; ++k) {
+        float vn = cr_row_vn(w, r, k, r->n);
+        float pn = cr_max(cr_sub(r->pn[k], cr_mul(r->mass_n[k], cr_sub(vn, r->target[k]))),
+                          0.0f);
+        float d = cr_sub(pn, r->pn[k]);
+        r->pn[k] = pn;
+        cr_row_apply(w, r, k, r->n, cr_lever_n(w, r->a, r->ra[k], r->n),
+                     cr_lever_n(w, r->b, r->rb[k], r->n), d);
+        change = cr_max(change, cr_abs(d));
+    }
+    return change;
+}
+
+/* Sweeps over rows[0..n) until the impulses settle. */
+static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n)
+{
+    int it, i, k;
+    for (it = 0; it < CAROM_IMPACT_ISLAND_ITERATIONS; ++it) {
+        float change = 0.0f, biggest = 0.0f;
+        for (i = 0; i < n; ++i) {
+            change = cr_max(change, cr_row_sweep(w, &rows[i]));
+            for (k = 0; k < rows[i].count; ++k)
+                biggest = cr_max(biggest, cr_abs(rows[i].pn[k]));
+        }
+        if (!cr_gt(change, cr_mul(CR_ISLAND_TOL, biggest)))
+            break;
+        /* a single frictionless point is exact after one sweep */
+        if (n == 1 && rows[0].count == 1 && !cr_gt(rows[0].friction, 0.0f))
+            break;
+    }
+}
+
+/* Row for pair k at the bodies' current poses (synchronised), 0 if the
+ * pair does not touch. */
+static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
+{
+    const cr_pair *p = &w->pairs[k];
+    const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
+    const cr_body_info *ia = &w->info[p->a], *ib = &w->info[p->b];
+    float scale, threshold;
+    cr_manifold m;
+    cr_v2 t;
+    int j;
+    if (!cr_collide(&ia->shape, A->x, A->q, &ib->shape, B->x, B->q, w->scale.slop,
+                    w->scale.face_tol, &m))
+        return 0;
+    r->a = p->a;
+    r->b = p->b;
+    r->pair = k;
+    r->n = m.n;
+    r->count = m.count;
+    r->restitution = cr_max(ia->restitution, ib->restitution);
+#if CAROM_ENABLE_FRICTION
+    r->friction = cr_sqrt(cr_mul(ia->friction, ib->friction));
+#else
+    r->friction = 0.0f;
+#endif
+    t = cr_vright(m.n);
+    r->approach = 0.0f;
+    scale = cr_add(cr_add(cr_vlen(A->v), cr_vlen(B->v)),
+                   cr_add(cr_mul(cr_abs(A->w), ia->shape.extent),
+                          cr_mul(cr_abs(B->w), ib->shape.extent)));
+    for (j = 0; j < m.count; ++j) {
+        r->ra[j] = cr_vsub(m.pts[j].p, A->x);
+        r->rb[j] = cr_vsub(m.pts[j].p, B->x);
+        r->mass_n[j] = cr_effective_mass(A, B, cr_lever_n(w, p->a, r->ra[j], m.n),
+                                         cr_lever_n(w, p->b, r->rb[j], m.n));
+        r->mass_t[j] = cr_effective_mass(A, B, cr_vcross(r->ra[j], t),
+                                         cr_vcross(r->rb[j], t));
+        r->pn[j] = 0.0f;
+        r->pt[j] = 0.0f;
+        r->target[j] = cr_neg(cr_row_vn(w, r, j, m.n)); /* approach, for now */
+        r->approach = cr_max(r->approach, r->target[j]);
+    }
+    threshold = cr_impact_speed(w, p->a, p->b, scale);
+    r->impact = cr_gt(r->approach, threshold);
+    for (j = 0; j < m.count; ++j)
+        r->target[j] = r->impact ? cr_mul(r->restitution, cr_max(0.0f, r->target[j]))
+                                 : 0.0f;
+    return 1;
+}
+
+static int cr_island_add_body(carom_world *w, int i, int *n)
+{
+    if (!cr_moving(&w->bodies[i]) || w->mark[i] == w->mark_stamp)
+        return 1;
+    if (*n >= w->island_cap)
+        return 0;
+    w->mark[i] = w->mark_stamp;
+    w->island[(*n)++] = i;
+    return 1;
+}
+
+static void cr_record(carom_world *w, const cr_impact_row *r, float t)
+{
+    float impulse = 0.0f;
+    int k;
+    for (k = 0; k < r->count; ++k)
+        impulse = cr_add(impulse, r->pn[k]);
+    if (cr_gt(impulse, 0.0f))
+        cr_record_impact(w, r->a, r->b, t, r->n, impulse, r->approach);
 }
 
 /*
- * An impulse can send a body out of the box it was expected to sweep (a
- * light ball struck by a heavy one). Grow its box, and add the pairs the
- * larger box creates, so no impact is missed for want of a candidate pair.
+ * For the rest of the substep, keep the island's touching contacts from
+ * closing in: predict each body's velocity at t_end on its drift, remove
+ * the approach of every touching row (inelastically), and make the drift
+ * reach the corrected velocity instead.
  */
-static void cr_regrow(carom_world *w, int i, float t)
+static void cr_hold_contacts(carom_world *w, int nb, int nr, float t, float t_end)
 {
-    cr_body *b = &w->bodies[i];
-    cr_proxy now;
-    int j, k;
-    if (b->type != CAROM_BODY_DYNAMIC)
+    float h = cr_sub(t_end, t), inv_h;
+    int i, k;
+    if (!cr_gt(h, 0.0f))
         return;
-    cr_body_swept_bounds(b, t, w->def.dt, w->def.linear_slop, &now);
-    if (cr_box_contains(&b->sweep, &now))
-        return;
-    b->sweep.lo_x = cr_min(b->sweep.lo_x, now.lo_x);
-    b->sweep.hi_x = cr_max(b->sweep.hi_x, now.hi_x);
-    b->sweep.lo_y = cr_min(b->sweep.lo_y, now.lo_y);
-    b->sweep.hi_y = cr_max(b->sweep.hi_y, now.hi_y);
-    for (j = 0; j < w->body_count; ++j) {
-        int lo = i < j ? i : j, hi = i < j ? j : i, known = 0;
-        if (j == i || !cr_boxes_overlap(&b->sweep, &w->bodies[j].sweep))
-            continue;
-        for (k = 0; k < w->pair_count && !known; ++k)
-            known = w->pairs[k].a == lo && w->pairs[k].b == hi;
-        if (known)
-            continue;
-        if (w->pair_count >= w->def.max_pairs) {
-            ++w->pairs_dropped;
-            continue;
+    inv_h = cr_div(1.0f, h);
+    for (i = 0; i < nb; ++i) {
+        int id = w->island[i];
+        cr_body *b = &w->bodies[id];
+        w->island_v[i] = b->v;
+        w->island_w[i] = b->w;
+        b->v = cr_vmadd(b->v, h, w->drift[id].a);
+        b->w = cr_add(b->w, cr_mul(h, w->drift[id].alpha));
+    }
+    for (i = 0; i < nr; ++i)
+        for (k = 0; k < w->rows[i].count; ++k) {
+            w->rows[i].target[k] = 0.0f;
+            w->rows[i].pn[k] = 0.0f;
+            w->rows[i].pt[k] = 0.0f;
         }
-        w->pairs[w->pair_count].a = lo;
-        w->pairs[w->pair_count].b = hi;
-        w->pair_toi[w->pair_count] = cr_pair_next_impact(w, w->pair_count, t);
-        ++w->pair_count;
-    }
-}
-
-/* Earliest pending impact (ties: lowest pair); -1 if none in the step. */
-static int cr_next(const carom_world *w)
-{
-    int k, best = -1;
-    for (k = 0; k < w->pair_count; ++k) {
-        float t = w->pair_toi[k];
-        if (!cr_le(t, w->def.dt))
-            continue;
-        if (best < 0 || cr_lt(t, w->pair_toi[best]) ||
-            (cr_eq(t, w->pair_toi[best]) &&
-             (w->pairs[k].a < w->pairs[best].a ||
-              (w->pairs[k].a == w->pairs[best].a &&
-               w->pairs[k].b < w->pairs[best].b))))
-            best = k;
-    }
-    return best;
-}
-
-carom_status cr_step_events(carom_world *w)
-{
-    carom_status st = CAROM_OK;
-    float dt = w->def.dt;
-    float t_start;
-    int i, k, impacts = 0, loops = 0;
-    int max_loops = 4 * w->def.max_events + 64;
-    int recompute_all = w->method == CAROM_METHOD_EVENTS;
-    float t_stop = dt;
-
-    /* 1. drifts */
-    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
-    t_start = cr_mul((float)w->steps, dt);
-    for (i = 0; i < w->body_count; ++i) {
-        cr_body *b = &w->bodies[i];
-        b->t_sync = 0.0f;
-        b->vel_saved = b->vel;
-        b->w_saved = b->w;
+    cr_rows_solve(w, w->rows, nr);
+    for (i = 0; i < nb; ++i) {
+        int id = w->island[i];
+        cr_body *b = &w->bodies[id];
+        cr_drift *d = &w->drift[id];
         if (b->type == CAROM_BODY_DYNAMIC) {
-            b->acc_d = cr_vadd(b->acc, b->acc_c);
-            b->alpha_d = cr_add(b->alpha, b->alpha_c);
-        } else {
-            b->acc_d = cr_v(0.0f, 0.0f);
-            b->alpha_d = 0.0f;
+            d->a = cr_vscale(inv_h, cr_vsub(b->v, w->island_v[i]));
+            d->alpha = cr_mul(inv_h, cr_sub(b->w, w->island_w[i]));
         }
+        b->v = w->island_v[i];
+        b->w = w->island_w[i];
     }
-    /* 2. candidate pairs from the swept boxes */
-    CR_PHASE(w, CAROM_PHASE_BROADPHASE);
-    for (i = 0; i < w->body_count; ++i) {
-        cr_body_swept_bounds(&w->bodies[i], 0.0f, dt, w->def.linear_slop,
-                             &w->proxies[i]);
-        w->proxies[i].body = i;
-        cr_set_box(&w->bodies[i].sweep, &w->proxies[i]);
-    }
-    cr_broadphase_pairs(w);
-    /* 3. first impacts */
-    CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
-    for (k = 0; k < w->pair_count; ++k)
-        w->pair_toi[k] = cr_pair_next_impact(w, k, 0.0f);
+}
 
-    /* 4. impacts in time order */
-    while ((k = cr_next(w)) >= 0) {
-        float t = w->pair_toi[k];
-        int a = w->pairs[k].a, b = w->pairs[k].b, j, hit;
-        if (impacts >= w->def.max_events || ++loops > max_loops) {
-            /* cap: motion stops at this instant for the rest of the step,
-             * so no body moves past an impact it was not given; the
-             * pending impacts are taken at the start of the next step */
-            st = CAROM_ERR_EVENT_CAPACITY;
-            ++w->events_dropped;
-            t_stop = t;
+/* The impacts at local time t: pair `seed`, and every other pair due at
+ * the same instant. */
+static carom_status cr_impact_instant(carom_world *w, int seed, float t,
+                                      float t_end)
+{
+    float eps = cr_mul(CAROM_SIMULTANEOUS_TIME_TOL, w->def.dt);
+    int nb = 0, nr = 0, i, k, any = 0, seeds = 0;
+    carom_status st = CAROM_OK;
+
+    if (++w->mark_stamp == 0)
+        ++w->mark_stamp;
+    /* seeds: this pair and every pair due within eps */
+    w->pairs[seed].mark = w->mark_stamp;
+    cr_island_add_body(w, w->pairs[seed].a, &nb);
+    cr_island_add_body(w, w->pairs[seed].b, &nb);
+    w->rows[0].pair = seed;
+    seeds = 1;
+    while (w->heap_count > 0 && cr_le(w->heap[0].t, cr_add(t, eps))) {
+        cr_heap_entry e = w->heap[0];
+        cr_pair *p = &w->pairs[e.pair];
+        cr_heap_pop(w);
+        if (e.stamp != p->stamp || p->mark == w->mark_stamp)
+            continue;
+        if (seeds >= w->row_cap || !cr_island_add_body(w, p->a, &nb) ||
+            !cr_island_add_body(w, p->b, &nb)) {
+            /* no room: leave it for right after this instant */
+            p->toi = t;
+            cr_heap_push(w, e.pair);
             break;
         }
-        hit = cr_impact(w, k, t, t_start);
-        impacts += hit;
-        CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
-        if (!recompute_all) {
-            /* first-impact: each pair's first impact only, found once */
-            w->pair_toi[k] = CR_NO_IMPACT;
+        p->mark = w->mark_stamp;
+        w->rows[seeds++].pair = e.pair;
+    }
+    /* through the resting contacts that touch the island's bodies */
+    for (i = 0; i < nb; ++i) {
+        int body = w->island[i];
+        k = w->pair_head[body];
+        while (k >= 0) {
+            cr_pair *p = &w->pairs[k];
+            int other = p->a == body ? p->b : p->a;
+            int next = p->a == body ? p->next_a : p->next_b;
+            if (p->mark != w->mark_stamp && p->contact >= 0 &&
+                (w->contacts[p->contact].flags & CR_CONTACT_SOLVE) &&
+                (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING) &&
+                seeds < w->row_cap && cr_island_add_body(w, other, &nb)) {
+                p->mark = w->mark_stamp;
+                w->rows[seeds++].pair = k;
+            }
+            k = next;
+        }
+    }
+    /* everyone to the instant, then the rows */
+    for (i = 0; i < nb; ++i)
+        cr_sync(&w->bodies[w->island[i]], &w->drift[w->island[i]], t);
+    for (i = 0; i < seeds; ++i) {
+        cr_pair *p = &w->pairs[w->rows[i].pair];
+        /* static or sleeping partners do not move: nothing to sync */
+        if (cr_row_make(w, w->rows[i].pair, &w->rows[nr]))
+            ++nr;
+        p->toi = CR_NEVER;
+    }
+    CR_PHASE(w, CAROM_PHASE_IMPULSES);
+    cr_rows_solve(w, w->rows, nr);
+    for (i = 0; i < nr; ++i) {
+        const cr_impact_row *r = &w->rows[i];
+        if (!r->impact)
             continue;
-        }
-        if (!hit) {
-            /* nothing changed but this pair's search start; no progress
-             * means no impact: leave the pair to the end-of-step solver */
-            float next = cr_pair_next_impact(w, k, t);
-            w->pair_toi[k] = cr_gt(next, t) ? next : CR_NO_IMPACT;
-            continue;
-        }
-        /* the impulse changed the paths of a and b (a static body's never
-         * changes): their pairs' impacts are found again from t */
-        for (j = 0; j < w->pair_count; ++j) {
-            int pa = w->pairs[j].a, pb = w->pairs[j].b;
-            int moved = (pa == a || pb == a) && w->bodies[a].type == CAROM_BODY_DYNAMIC;
-            moved |= (pa == b || pb == b) && w->bodies[b].type == CAROM_BODY_DYNAMIC;
-            if (moved)
-                w->pair_toi[j] = cr_pair_next_impact(w, j, t);
-        }
+        for (k = 0; k < r->count; ++k)
+            any |= cr_gt(r->pn[k], 0.0f);
+        cr_record(w, r, t);
+        w->pairs[r->pair].met = 1;
+    }
+    ++w->stats.impact_solves;
+    CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
+    if (!any)
+        return CAROM_OK; /* nothing changed course; the seeds wait for the
+                            next substep */
+    cr_hold_contacts(w, nb, nr, t, t_end);
+    /* the island's bodies changed course: search their pairs again */
+    for (i = 0; i < nb; ++i)
+        ++w->drift[w->island[i]].version;
+    for (i = 0; i < nb && st == CAROM_OK; ++i) {
         CR_PHASE(w, CAROM_PHASE_BROADPHASE);
-        cr_regrow(w, a, t);
-        cr_regrow(w, b, t);
+        st = cr_regrow(w, w->island[i], t);
         CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
     }
-
-    /* 5. finish the drift and the Verlet velocity update */
-    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
-    for (i = 0; i < w->body_count; ++i) {
-        cr_body *b = &w->bodies[i];
-        cr_v2 acc1;
-        float alpha1;
-        cr_body_sync(b, t_stop);
-        b->t_sync = 0.0f;
-        if (b->type != CAROM_BODY_DYNAMIC)
-            continue;
-        if (!cr_body_forces(w, i, b, &acc1, &alpha1) && st == CAROM_OK)
-            st = CAROM_ERR_NOT_FINITE;
-        b->vel = cr_vadd(cr_vmadd(b->vel, cr_neg(t_stop), b->acc_c),
-                         cr_vscale(cr_mul(0.5f, t_stop), cr_vsub(acc1, b->acc)));
-        b->acc = acc1;
-#if CAROM_ENABLE_ROTATION
-        b->w = cr_add(cr_sub(b->w, cr_mul(t_stop, b->alpha_c)),
-                      cr_mul(cr_mul(0.5f, t_stop), cr_sub(alpha1, b->alpha)));
-        b->alpha = alpha1;
-#endif
+    for (i = 0; i < nb; ++i) {
+        int body = w->island[i];
+        k = w->pair_head[body];
+        while (k >= 0) {
+            cr_pair *p = &w->pairs[k];
+            int next = p->a == body ? p->next_a : p->next_b;
+            /* a resting contact the impact sent one body into is an impact
+             * now, for this loop, not the solver */
+            if (p->contact >= 0) {
+                cr_contact *c = &w->contacts[p->contact];
+                if ((c->flags & CR_CONTACT_SOLVE) &&
+                    cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b)))
+                    c->flags &= ~CR_CONTACT_SOLVE;
+            }
+            if (w->method != CAROM_METHOD_FIRST_IMPACT &&
+                (p->va != w->drift[p->a].version || p->vb != w->drift[p->b].version ||
+                 p->solved != cr_solved_contact(w, p)))
+                cr_pair_search(w, k, t);
+            k = next;
+        }
     }
     return st;
 }
 
-#else
-/* ISO C forbids an empty translation unit */
-typedef int cr_events_disabled;
+carom_status cr_events_advance(carom_world *w, float t_end)
+{
+    carom_status st = CAROM_OK;
+    int budget = w->def.max_impacts;
+    CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
+    while (st == CAROM_OK && w->heap_count > 0 && !w->budget_hit) {
+        cr_heap_entry e = w->heap[0];
+        cr_pair *p = &w->pairs[e.pair];
+        if (cr_gt(e.t, t_end))
+            break;
+        cr_heap_pop(w);
+        if (e.stamp != p->stamp)
+            continue;
+        if (w->impacts_this_step >= budget) {
+            w->budget_hit = 1;
+            break;
+        }
+        st = cr_impact_instant(w, e.pair, e.t, t_end);
+    }
+    return st;
+}
+
+carom_status cr_events_add_contacts(carom_world *w, float t)
+{
+    int k;
+    for (k = 0; k < w->pair_count; ++k) {
+        cr_pair *p = &w->pairs[k];
+        if (!p->met)
+            continue;
+        p->met = 0;
+        if (p->contact >= 0)
+            continue;
+        /* both bodies at this instant, displacements up to date */
+        cr_sync(&w->bodies[p->a], &w->drift[p->a], t);
+        cr_sync(&w->bodies[p->b], &w->drift[p->b], t);
+        if (cr_contact_add(w, k) == -2)
+            return CAROM_ERR_CONTACT_CAPACITY;
+    }
+    return CAROM_OK;
+}
+
+#else /* !CAROM_ENABLE_EVENTS */
+
+void cr_events_begin(carom_world *w) { (void)w; }
+void cr_events_refresh(carom_world *w, float t) { (void)w; (void)t; }
+carom_status cr_events_advance(carom_world *w, float t_end)
+{
+    (void)w;
+    (void)t_end;
+    return CAROM_OK;
+}
+carom_status cr_events_add_contacts(carom_world *w, float t)
+{
+    (void)w;
+    (void)t;
+    return CAROM_OK;
+}
+
 #endif /* CAROM_ENABLE_EVENTS */

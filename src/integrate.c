@@ -1,26 +1,27 @@
 /*
- * integrate.c -- velocity Verlet, exactly as the design note writes it:
+ * integrate.c -- velocity Verlet, as the design note writes it:
  *
  *   x1 = x0 + v0 dt + a0 dt^2 / 2
  *   a1 = (1/m) sum f(x1)
  *   v1 = v0 + (a0 + a1) dt / 2
  *
- * and the same for rotation (angle, angular velocity, torque / inertia),
- * with the angle carried as a unit (cos, sin) pair: the rotation advances by
- * the angle increment w0 dt + alpha0 dt^2 / 2 through the library's own
+ * and the same for rotation, with the angle carried as a unit (cos, sin)
+ * pair: it advances by the angle increment through the library's own
  * trigonometry, then is renormalised.
  *
- * Every body moves before any force is evaluated, because a force callback
- * may depend on the positions of other bodies.
+ * Inside a step a body follows drifts (integrate.h): Verlet's position
+ * update with a constant acceleration, which is exact; contact substeps and
+ * impacts only change the velocity and the acceleration of the drift at
+ * known instants. The step finishes the velocity with the force at the new
+ * position (world.c).
  *
- * Resting contacts are forces, not impacts: the drift includes the
- * acceleration acc_c that last step's resting contact impulses amount to
- * (solver.c). Without it every resting body would drift |g| dt^2 / 2 into
- * its support each step and rely on projection to come back out; with it a
- * resting stack does not move at all. The velocity update leaves acc_c out,
- * because the solver applies the contact impulses to velocities itself.
+ * Positions and velocities are sums of many small increments: x += v dt
+ * every step rounds every step, and the error grows with the number of
+ * steps, so it grows as dt shrinks (docs/accuracy.md). With
+ * CAROM_ENABLE_COMPENSATED each body keeps the rounding it lost (Kahan), and
+ * the sum is as accurate as one rounding of the exact total.
  */
-#include "internal.h"
+#include "integrate.h"
 
 cr_rot cr_rot_advance(cr_rot q, float angle)
 {
@@ -34,93 +35,115 @@ cr_rot cr_rot_advance(cr_rot q, float angle)
 #endif
 }
 
-/*
- * Acceleration and angular acceleration of body `id` at its current
- * position: gravity plus (constant force + callback force) / m. Returns 0
- * if the callback gave a non-finite value (which is then ignored).
- */
-static int cr_forces(const carom_world *w, int id, const cr_body *b,
-                     cr_v2 *acc, float *alpha)
+void cr_add_position(cr_body *b, cr_v2 dx)
 {
-    int ok = 1;
+#if CAROM_ENABLE_COMPENSATED
+    cr_kadd(&b->x.x, &b->xc.x, dx.x);
+    cr_kadd(&b->x.y, &b->xc.y, dx.y);
+#else
+    b->x = cr_vadd(b->x, dx);
+#endif
+}
+
+void cr_add_velocity(cr_body *b, cr_v2 dv)
+{
+#if CAROM_ENABLE_COMPENSATED
+    cr_kadd(&b->v.x, &b->vc.x, dv.x);
+    cr_kadd(&b->v.y, &b->vc.y, dv.y);
+#else
+    b->v = cr_vadd(b->v, dv);
+#endif
+}
+
+/* Displacement v h + a h^2 / 2 of a drift over h. */
+static cr_v2 cr_drift_offset(cr_v2 v, cr_v2 a, float h)
+{
+    return cr_vadd(cr_vscale(h, v), cr_vscale(cr_mul(0.5f, cr_mul(h, h)), a));
+}
+
+static float cr_drift_angle(float w, float alpha, float h)
+{
+    return cr_add(cr_mul(w, h), cr_mul(cr_mul(0.5f, cr_mul(h, h)), alpha));
+}
+
+void cr_pose_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *x,
+                cr_rot *q)
+{
+    float h = cr_sub(s, d->t);
+    *x = cr_vadd(b->x, cr_drift_offset(b->v, d->a, h));
+#if CAROM_ENABLE_ROTATION
+    *q = cr_rot_advance(b->q, cr_drift_angle(b->w, d->alpha, h));
+#else
+    *q = b->q;
+#endif
+}
+
+void cr_velocity_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *v,
+                    float *w)
+{
+    float h = cr_sub(s, d->t);
+    *v = cr_vmadd(b->v, h, d->a);
+    *w = cr_add(b->w, cr_mul(h, d->alpha));
+}
+
+void cr_sync(cr_body *b, cr_drift *d, float s)
+{
+    float h = cr_sub(s, d->t);
+    d->t = s;
+    if (b->type == CAROM_BODY_STATIC || cr_eq(h, 0.0f))
+        return;
+    cr_add_position(b, cr_drift_offset(b->v, d->a, h));
+    cr_add_velocity(b, cr_vscale(h, d->a));
+#if CAROM_ENABLE_ROTATION
+    b->q = cr_rot_advance(b->q, cr_drift_angle(b->w, d->alpha, h));
+    b->w = cr_add(b->w, cr_mul(h, d->alpha));
+#endif
+}
+
+carom_status cr_body_accel(const carom_world_def *def, int id,
+                           const cr_body *b, const cr_body_info *info,
+                           cr_v2 *a, float *alpha)
+{
+    if (b->type != CAROM_BODY_DYNAMIC) {
+        *a = cr_v(0.0f, 0.0f);
+        *alpha = 0.0f;
+        return CAROM_OK;
+    }
 #if CAROM_ENABLE_FORCES
-    cr_v2 f = b->force;
-    float tq = b->torque;
-    if (w->def.force_fn) {
-        carom_body_state st;
-        cr_v2 uf = cr_v(0.0f, 0.0f);
-        float ut = 0.0f;
-        st.center = b->x;
-        st.position = cr_body_origin(b);
-        st.rotation = b->q;
-        st.velocity = b->vel;
-        st.angular_velocity = b->w;
-        w->def.force_fn(w->def.force_user, id, &st, &uf, &ut);
-        if (cr_finite(uf.x) && cr_finite(uf.y) && cr_finite(ut)) {
+    {
+        cr_v2 f = info->force;
+        float tq = info->torque;
+        if (def->force_fn) {
+            carom_body_state st;
+            cr_v2 uf = cr_v(0.0f, 0.0f);
+            float ut = 0.0f;
+            st.center = b->x;
+            st.position = cr_body_origin(b, info);
+            st.rotation = b->q;
+            st.velocity = b->v;
+            st.angular_velocity = b->w;
+            def->force_fn(def->force_user, id, &st, &uf, &ut);
+            if (!cr_finite(uf.x) || !cr_finite(uf.y) || !cr_finite(ut))
+                return CAROM_ERR_NOT_FINITE;
+            if (!cr_accel_in_range(info, uf, ut))
+                return CAROM_ERR_OUT_OF_RANGE;
             f = cr_vadd(f, uf);
             tq = cr_add(tq, ut);
-        } else {
-            ok = 0;
         }
-    }
-    *acc = cr_vadd(w->def.gravity, cr_vscale(b->inv_m, f));
+        *a = cr_vadd(def->gravity, cr_vscale(b->inv_m, f));
 #if CAROM_ENABLE_ROTATION
-    *alpha = cr_mul(b->inv_I, tq);
+        *alpha = cr_mul(b->inv_I, tq);
 #else
-    (void)tq;
-    *alpha = 0.0f;
+        (void)tq;
+        *alpha = 0.0f;
 #endif
+    }
 #else
     (void)id;
+    (void)info;
     (void)b;
-    *acc = w->def.gravity;
+    *a = def->gravity;
     *alpha = 0.0f;
 #endif
-    return ok;
-}
-
-int cr_body_forces(const carom_world *w, int id, const cr_body *b,
-                   cr_v2 *acc, float *alpha)
-{
-    return cr_forces(w, id, b, acc, alpha);
-}
-
-/* Advance every dynamic body by dt. Returns 0 if some force callback value
- * was not finite (that force was ignored). */
-int cr_integrate(carom_world *w, float dt)
-{
-    int i, ok = 1;
-    float half_dt = cr_mul(0.5f, dt);
-    float half_dt2 = cr_mul(half_dt, dt);
-
-    for (i = 0; i < w->body_count; ++i) {
-        cr_body *b = &w->bodies[i];
-        if (b->type != CAROM_BODY_DYNAMIC)
-            continue;
-        b->x = cr_vadd(cr_vadd(b->x, cr_vscale(dt, b->vel)),
-                       cr_vscale(half_dt2, cr_vadd(b->acc, b->acc_c)));
-#if CAROM_ENABLE_ROTATION
-        b->q = cr_rot_advance(b->q, cr_add(cr_mul(b->w, dt),
-                                           cr_mul(cr_add(b->alpha, b->alpha_c),
-                                                  half_dt2)));
-#endif
-    }
-    for (i = 0; i < w->body_count; ++i) {
-        cr_body *b = &w->bodies[i];
-        cr_v2 acc1;
-        float alpha1;
-        if (b->type != CAROM_BODY_DYNAMIC)
-            continue;
-        if (!cr_forces(w, i, b, &acc1, &alpha1))
-            ok = 0;
-        b->vel_saved = b->vel; /* start-of-step velocity, for the solver */
-        b->w_saved = b->w;
-        b->vel = cr_vadd(b->vel, cr_vscale(half_dt, cr_vadd(b->acc, acc1)));
-        b->acc = acc1;
-#if CAROM_ENABLE_ROTATION
-        b->w = cr_add(b->w, cr_mul(half_dt, cr_add(b->alpha, alpha1)));
-        b->alpha = alpha1;
-#endif
-    }
-    return ok;
+    return CAROM_OK;
 }

@@ -1,66 +1,86 @@
 /*
  * narrowphase.c -- contact manifolds for circle-circle, polygon-circle and
- * polygon-polygon pairs.
+ * polygon-polygon pairs, through a table indexed by the two shape kinds.
  *
- * A manifold holds the unit normal from body a to body b and up to two
+ * A manifold holds the unit normal from shape A to shape B and up to two
  * points; each point lies midway between the two surfaces and carries the
  * signed separation along the normal (negative: overlap) and a feature id
  * that stays the same while the same features touch, so the solver can
- * reuse last step's impulses (warm starting).
+ * reuse last step's impulses (warm starting). Ids read (feature of A << 8 |
+ * feature of B), whichever shape gave the reference face.
+ *
+ * Everything is computed in A's frame (B's pose relative to A's), so the
+ * manifold of a pair does not depend on where in the world it sits: a stack
+ * at x = 7.77 gets the same contacts as at x = 0.
  *
  * Polygon pairs use the separating axis test over both polygons' face
- * normals; the face of least penetration is the reference face, the most
- * anti-parallel face of the other polygon the incident face, and the
- * incident face is clipped to the reference face's side planes.
+ * normals. The face of least penetration is the reference face; B's face
+ * is taken only when it is better than A's by more than a tolerance, so
+ * aligned edges (equal separations up to rounding) never flip the choice
+ * from step to step. The most anti-parallel face of the other polygon is
+ * the incident face, and its ends are clamped to the reference face's span
+ * (the side planes). Both points are kept as long as they are within reach:
+ * a point beyond it is speculative and the solver ignores it until the
+ * surfaces close in.
  */
-#include "internal.h"
+#include "narrowphase.h"
 
-/* Prefer body a's face unless body b's is clearly better: flipping between
- * nearly equal faces from step to step would spoil warm starting. */
-#define CR_FACE_TOL_FRACTION 0.1f
+/* Feature ids of a circle, and of a clipped polygon point whose incident
+ * end was cut by a side plane (its position is then the reference vertex's
+ * side, the id names the reference vertex). */
+#define CR_ID(a, b) (((unsigned)(a) << 8) | (unsigned)(b))
 
-/* A margin larger than any distance: collide at any range. */
-#define CR_FAR 3.0e38f
+typedef int (*cr_collide_fn)(const cr_shape *A, const cr_shape *B, cr_v2 p,
+                             cr_rot q, float reach, float face_tol,
+                             cr_manifold *m);
 
 static cr_v2 cr_midpoint(cr_v2 p, cr_v2 q)
 {
     return cr_vscale(0.5f, cr_vadd(p, q));
 }
 
-/* ---- circle - circle ----------------------------------------------------- */
-
-static int cr_circle_circle(const cr_body *A, const cr_body *B, float margin,
-                            cr_manifold *m)
+/* Relative rotation qa^-1 qb. */
+static cr_rot cr_rot_relative(cr_rot qa, cr_rot qb)
 {
-    cr_v2 d = cr_vsub(B->x, A->x);
+    return cr_r(cr_add(cr_mul(qa.c, qb.c), cr_mul(qa.s, qb.s)),
+                cr_sub(cr_mul(qa.c, qb.s), cr_mul(qa.s, qb.c)));
+}
+
+/* ---- circle - circle (in A's frame: A at the origin) ---------------------- */
+
+static int cr_circles(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
+                      float reach, float face_tol, cr_manifold *m)
+{
     float r = cr_add(A->radius, B->radius);
-    float reach = cr_add(r, margin);
-    float dist2 = cr_vlen2(d), dist;
+    float far = cr_add(r, reach);
+    float dist2 = cr_vlen2(p), dist;
     cr_v2 n;
-    if (cr_gt(dist2, cr_mul(reach, reach)))
+    (void)q;
+    (void)face_tol;
+    if (cr_gt(dist2, cr_mul(far, far)))
         return 0;
     dist = cr_sqrt(dist2);
     /* concentric circles: any normal is right; pick +y deterministically */
-    n = cr_gt(dist, 0.0f) ? cr_vscale(cr_div(1.0f, dist), d) : cr_v(0.0f, 1.0f);
+    n = cr_gt(dist, 0.0f) ? cr_vscale(cr_div(1.0f, dist), p) : cr_v(0.0f, 1.0f);
     m->n = n;
     m->count = 1;
     m->pts[0].sep = cr_sub(dist, r);
-    m->pts[0].p = cr_midpoint(cr_vmadd(A->x, A->radius, n),
-                              cr_vmadd(B->x, cr_neg(B->radius), n));
+    m->pts[0].p = cr_midpoint(cr_vscale(A->radius, n),
+                              cr_vmadd(p, cr_neg(B->radius), n));
     m->pts[0].id = 0u;
     return 1;
 }
 
+#if CAROM_ENABLE_POLYGONS
+
 /* ---- polygon - circle (normal from the polygon to the circle) ------------ */
 
-#if CAROM_ENABLE_POLYGONS
-static int cr_polygon_circle(const cr_body *P, const cr_body *C, float margin,
-                             cr_manifold *m)
+/* Polygon P at the origin of the frame, circle centre c in that frame. */
+static int cr_polygon_circle_at(const cr_shape *P, cr_v2 c, float r,
+                                float reach, cr_manifold *m, int flip)
 {
-    cr_v2 c = cr_inv_rotate(P->q, cr_vsub(C->x, P->x)); /* polygon frame */
-    float r = C->radius, reach = cr_add(r, margin), s, sep;
-    int i, face = 0, n = P->count;
-    unsigned id;
+    float far = cr_add(r, reach), s, sep;
+    int i, face = 0, n = P->count, vertex;
     cr_v2 v1, v2, normal, surface;
 
     s = cr_vdot(P->norms[0], cr_vsub(c, P->verts[0]));
@@ -71,65 +91,88 @@ static int cr_polygon_circle(const cr_body *P, const cr_body *C, float margin,
             face = i;
         }
     }
-    if (cr_gt(s, reach))
+    if (cr_gt(s, far))
         return 0;
     v1 = P->verts[face];
     v2 = P->verts[(face + 1) % n];
-
-    if (cr_le(s, 0.0f)) {
-        /* centre inside: push out through the face of least penetration */
+    vertex = -1;
+    if (cr_gt(s, 0.0f)) {
+        float u1 = cr_vdot(cr_vsub(c, v1), cr_vsub(v2, v1));
+        float u2 = cr_vdot(cr_vsub(c, v2), cr_vsub(v1, v2));
+        if (cr_le(u1, 0.0f))
+            vertex = face;
+        else if (cr_le(u2, 0.0f))
+            vertex = (face + 1) % n;
+    }
+    if (vertex >= 0) {
+        /* the centre is beyond a vertex: the normal points from it */
+        cr_v2 v = P->verts[vertex];
+        cr_v2 d = cr_vsub(c, v);
+        float dist2 = cr_vlen2(d), dist;
+        if (cr_gt(dist2, cr_mul(far, far)))
+            return 0;
+        dist = cr_sqrt(dist2);
+        normal = cr_vscale(cr_div(1.0f, dist), d);
+        sep = cr_sub(dist, r);
+        surface = v;
+    } else {
+        /* face region, or the centre inside: out through the face of least
+         * penetration */
         normal = P->norms[face];
         sep = cr_sub(s, r);
         surface = cr_vmadd(c, cr_neg(s), normal);
-        id = (unsigned)face;
-    } else {
-        float u1 = cr_vdot(cr_vsub(c, v1), cr_vsub(v2, v1));
-        float u2 = cr_vdot(cr_vsub(c, v2), cr_vsub(v1, v2));
-        if (cr_le(u1, 0.0f) || cr_le(u2, 0.0f)) {
-            /* vertex region */
-            cr_v2 v = cr_le(u1, 0.0f) ? v1 : v2;
-            cr_v2 d = cr_vsub(c, v);
-            float dist2 = cr_vlen2(d), dist;
-            if (cr_gt(dist2, cr_mul(reach, reach)))
-                return 0;
-            dist = cr_sqrt(dist2);
-            normal = cr_vscale(cr_div(1.0f, dist), d);
-            sep = cr_sub(dist, r);
-            surface = v;
-            id = 16u + (unsigned)(cr_le(u1, 0.0f) ? face : (face + 1) % n);
-        } else {
-            normal = P->norms[face];
-            sep = cr_sub(s, r);
-            surface = cr_vmadd(c, cr_neg(s), normal);
-            id = (unsigned)face;
-        }
     }
     m->count = 1;
-    m->n = cr_rotate(P->q, normal);
+    m->n = flip ? cr_vneg(normal) : normal;
     m->pts[0].sep = sep;
-    m->pts[0].p = cr_vadd(P->x, cr_rotate(P->q, cr_midpoint(
-                      surface, cr_vmadd(c, cr_neg(r), normal))));
-    m->pts[0].id = id;
+    m->pts[0].p = cr_midpoint(surface, cr_vmadd(c, cr_neg(r), normal));
+    m->pts[0].id = vertex >= 0 ? CR_ID(vertex, 0) : CR_ID(16 + face, 0);
+    if (flip)
+        m->pts[0].id = (m->pts[0].id >> 8) | ((m->pts[0].id & 0xffu) << 8);
     return 1;
+}
+
+/* A polygon, B circle at p (A's frame). */
+static int cr_polygon_circle(const cr_shape *A, const cr_shape *B, cr_v2 p,
+                             cr_rot q, float reach, float face_tol,
+                             cr_manifold *m)
+{
+    (void)q;
+    (void)face_tol;
+    return cr_polygon_circle_at(A, p, B->radius, reach, m, 0);
+}
+
+/* A circle, B polygon at (p, q) in A's frame: solved in B's frame. */
+static int cr_circle_polygon(const cr_shape *A, const cr_shape *B, cr_v2 p,
+                             cr_rot q, float reach, float face_tol,
+                             cr_manifold *m)
+{
+    int k, hit;
+    cr_v2 c = cr_inv_rotate(q, cr_vneg(p)); /* A's centre in B's frame */
+    (void)face_tol;
+    hit = cr_polygon_circle_at(B, c, A->radius, reach, m, 1);
+    if (!hit)
+        return 0;
+    m->n = cr_rotate(q, m->n);
+    for (k = 0; k < m->count; ++k)
+        m->pts[k].p = cr_vadd(p, cr_rotate(q, m->pts[k].p));
+    return hit;
 }
 
 /* ---- polygon - polygon ----------------------------------------------------- */
 
-/* Largest separation of B from A over A's face normals, and that face. */
-static float cr_max_separation(const cr_body *A, const cr_body *B, int *face)
+#if CAROM_ENABLE_POLYGON_POLYGON
+/* Largest separation of the points w[] from polygon P (its own frame) over
+ * P's face normals, and that face. */
+static float cr_max_separation(const cr_shape *P, const cr_v2 *w, int count,
+                               int *face)
 {
-    cr_v2 bv[CAROM_MAX_POLYGON_VERTICES];
-    cr_v2 off = cr_inv_rotate(A->q, cr_vsub(B->x, A->x));
-    cr_rot rel = cr_r(cr_add(cr_mul(A->q.c, B->q.c), cr_mul(A->q.s, B->q.s)),
-                      cr_sub(cr_mul(A->q.c, B->q.s), cr_mul(A->q.s, B->q.c)));
     float best = 0.0f;
     int i, j;
-    for (j = 0; j < B->count; ++j)
-        bv[j] = cr_vadd(off, cr_rotate(rel, B->verts[j]));
-    for (i = 0; i < A->count; ++i) {
-        float si = cr_vdot(A->norms[i], cr_vsub(bv[0], A->verts[i]));
-        for (j = 1; j < B->count; ++j)
-            si = cr_min(si, cr_vdot(A->norms[i], cr_vsub(bv[j], A->verts[i])));
+    for (i = 0; i < P->count; ++i) {
+        float si = cr_vdot(P->norms[i], cr_vsub(w[0], P->verts[i]));
+        for (j = 1; j < count; ++j)
+            si = cr_min(si, cr_vdot(P->norms[i], cr_vsub(w[j], P->verts[i])));
         if (i == 0 || cr_gt(si, best)) {
             best = si;
             *face = i;
@@ -138,147 +181,200 @@ static float cr_max_separation(const cr_body *A, const cr_body *B, int *face)
     return best;
 }
 
-typedef struct cr_clip_vertex {
-    cr_v2 p;
-    unsigned id;
-} cr_clip_vertex;
-
-/* Keep the part of segment in[0..1] with dot(n, p) <= offset. */
-static int cr_clip(const cr_clip_vertex in[2], cr_clip_vertex out[2],
-                   cr_v2 n, float offset, unsigned clip_id)
+/* Index of the edge of the polygon with normals nrm[] most anti-parallel to
+ * n. */
+static int cr_incident_edge(const cr_v2 *nrm, int count, cr_v2 n)
 {
-    int count = 0;
-    float d0 = cr_sub(cr_vdot(n, in[0].p), offset);
-    float d1 = cr_sub(cr_vdot(n, in[1].p), offset);
-    if (cr_le(d0, 0.0f))
-        out[count++] = in[0];
-    if (cr_le(d1, 0.0f))
-        out[count++] = in[1];
-    if (cr_lt(cr_mul(d0, d1), 0.0f) && count < 2) {
-        float u = cr_div(d0, cr_sub(d0, d1));
-        out[count].p = cr_vmadd(in[0].p, u, cr_vsub(in[1].p, in[0].p));
-        out[count].id = clip_id;
-        ++count;
-    }
-    return count;
-}
-
-static int cr_polygon_polygon(const cr_body *A, const cr_body *B, float margin,
-                              cr_manifold *m)
-{
-    int ea = 0, eb = 0, edge, flip, i, j, inc = 0, count = 0;
-    float sa, sb, best, front, side1, side2;
-    const cr_body *R, *I;
-    cr_v2 v1, v2, nref, t;
-    cr_clip_vertex in[2], c1[2], c2[2];
-
-    sa = cr_max_separation(A, B, &ea);
-    if (cr_gt(sa, margin))
-        return 0;
-    sb = cr_max_separation(B, A, &eb);
-    if (cr_gt(sb, margin))
-        return 0;
-
-    if (cr_gt(sb, cr_add(sa, cr_mul(CR_FACE_TOL_FRACTION, margin)))) {
-        R = B; I = A; edge = eb; flip = 1;
-    } else {
-        R = A; I = B; edge = ea; flip = 0;
-    }
-
-    v1 = cr_vadd(R->x, cr_rotate(R->q, R->verts[edge]));
-    v2 = cr_vadd(R->x, cr_rotate(R->q, R->verts[(edge + 1) % R->count]));
-    nref = cr_rotate(R->q, R->norms[edge]);
-
-    /* incident face: the most anti-parallel to the reference normal */
-    best = 0.0f;
-    for (j = 0; j < I->count; ++j) {
-        float d = cr_vdot(nref, cr_rotate(I->q, I->norms[j]));
-        if (j == 0 || cr_lt(d, best)) {
-            best = d;
-            inc = j;
+    int j, best = 0;
+    float low = cr_vdot(n, nrm[0]);
+    for (j = 1; j < count; ++j) {
+        float d = cr_vdot(n, nrm[j]);
+        if (cr_lt(d, low)) {
+            low = d;
+            best = j;
         }
     }
-    in[0].p = cr_vadd(I->x, cr_rotate(I->q, I->verts[inc]));
-    in[0].id = (unsigned)inc;
-    in[1].p = cr_vadd(I->x, cr_rotate(I->q, I->verts[(inc + 1) % I->count]));
-    in[1].id = (unsigned)((inc + 1) % I->count);
-
-    /* side planes of the reference face */
-    t = cr_v(cr_neg(nref.y), nref.x);
-    side1 = cr_neg(cr_vdot(t, v1));
-    side2 = cr_vdot(t, v2);
-    if (cr_clip(in, c1, cr_vneg(t), side1, 8u) < 2)
-        return 0;
-    if (cr_clip(c1, c2, t, side2, 9u) < 2)
-        return 0;
-
-    front = cr_vdot(nref, v1);
-    for (i = 0; i < 2; ++i) {
-        float sep = cr_sub(cr_vdot(nref, c2[i].p), front);
-        if (cr_gt(sep, margin))
-            continue;
-        m->pts[count].sep = sep;
-        m->pts[count].p = cr_vmadd(c2[i].p, cr_mul(-0.5f, sep), nref);
-        m->pts[count].id = (unsigned)edge | (c2[i].id << 4) |
-                           ((unsigned)flip << 8);
-        ++count;
-    }
-    if (count == 0)
-        return 0;
-    m->count = count;
-    m->n = flip ? cr_vneg(nref) : nref;
-    return 1;
+    return best;
 }
+
+static int cr_polygons(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
+                       float reach, float face_tol, cr_manifold *m)
+{
+    cr_v2 bv[CAROM_MAX_POLYGON_VERTICES], bn[CAROM_MAX_POLYGON_VERTICES];
+    cr_v2 av[CAROM_MAX_POLYGON_VERTICES]; /* A's vertices in B's frame */
+    const cr_v2 *rv, *rn, *iv, *in;
+    int ea = 0, eb = 0, j, flip, ref, inc, rc, ic, i11, i12, i21, i22, k;
+    float sa, sb, upper1, upper2, lower2, span;
+    cr_v2 v11, v12, v21, v22, nref, t, lo, hi, pts[2];
+    unsigned ids[2];
+    float seps[2];
+
+    for (j = 0; j < B->count; ++j) {
+        bv[j] = cr_vadd(p, cr_rotate(q, B->verts[j]));
+        bn[j] = cr_rotate(q, B->norms[j]);
+    }
+    sa = cr_max_separation(A, bv, B->count, &ea);
+    if (cr_gt(sa, reach))
+        return 0;
+    for (j = 0; j < A->count; ++j)
+        av[j] = cr_inv_rotate(q, cr_vsub(A->verts[j], p));
+    sb = cr_max_separation(B, av, A->count, &eb);
+    if (cr_gt(sb, reach))
+        return 0;
+
+    /* A's face unless B's is clearly better */
+    flip = cr_gt(sb, cr_add(sa, face_tol));
+    if (flip) {
+        rv = bv; rn = bn; rc = B->count; ref = eb;
+        iv = A->verts; in = A->norms; ic = A->count;
+    } else {
+        rv = A->verts; rn = A->norms; rc = A->count; ref = ea;
+        iv = bv; in = bn; ic = B->count;
+    }
+    nref = rn[ref];
+    i11 = ref;
+    i12 = (ref + 1) % rc;
+    v11 = rv[i11];
+    v12 = rv[i12];
+    inc = cr_incident_edge(in, ic, nref);
+    i21 = inc;
+    i22 = (inc + 1) % ic;
+    v21 = iv[i21];
+    v22 = iv[i22];
+
+    /* Along the reference edge (tangent t, from v11 to v12) the reference
+     * face spans [0, upper1]; the incident edge runs the other way, from
+     * v21 (upper2) to v22 (lower2). Clamp its ends into the span. */
+    t = cr_v(cr_neg(nref.y), nref.x);
+    upper1 = cr_vdot(t, cr_vsub(v12, v11));
+    upper2 = cr_vdot(t, cr_vsub(v21, v11));
+    lower2 = cr_vdot(t, cr_vsub(v22, v11));
+    span = cr_sub(upper2, lower2);
+    if (cr_lt(upper2, 0.0f) || cr_gt(lower2, upper1) || !cr_gt(span, 0.0f)) {
+        /* no lateral overlap (a corner passing a corner): the nearer end */
+        int near22 = cr_lt(cr_vdot(nref, cr_vsub(v22, v11)),
+                           cr_vdot(nref, cr_vsub(v21, v11)));
+        lo = hi = near22 ? v22 : v21;
+        pts[0] = lo;
+        ids[0] = near22 ? CR_ID(i11, i22) : CR_ID(i12, i21);
+        seps[0] = cr_vdot(nref, cr_vsub(lo, v11));
+        k = 1;
+    } else {
+        lo = v22;
+        if (cr_lt(lower2, 0.0f))
+            lo = cr_vmadd(v22, cr_div(cr_neg(lower2), span), cr_vsub(v21, v22));
+        hi = v21;
+        if (cr_gt(upper2, upper1))
+            hi = cr_vmadd(v22, cr_div(cr_sub(upper1, lower2), span),
+                          cr_vsub(v21, v22));
+        pts[0] = lo;
+        ids[0] = CR_ID(i11, i22);
+        seps[0] = cr_vdot(nref, cr_vsub(lo, v11));
+        pts[1] = hi;
+        ids[1] = CR_ID(i12, i21);
+        seps[1] = cr_vdot(nref, cr_vsub(hi, v11));
+        k = 2;
+    }
+
+    m->count = 0;
+    for (j = 0; j < k; ++j) {
+        cr_manifold_point *mp;
+        if (cr_gt(seps[j], reach))
+            continue;
+        mp = &m->pts[m->count++];
+        mp->sep = seps[j];
+        /* midway between the surfaces */
+        mp->p = cr_vmadd(pts[j], cr_mul(-0.5f, seps[j]), nref);
+        /* ids read (A's feature, B's feature) */
+        mp->id = flip ? ((ids[j] >> 8) | ((ids[j] & 0xffu) << 8)) : ids[j];
+    }
+    if (m->count == 0)
+        return 0;
+    /* every vector above is in A's frame; the normal goes from A to B */
+    m->n = flip ? cr_vneg(nref) : nref;
+    return m->count;
+}
+#endif /* CAROM_ENABLE_POLYGON_POLYGON */
 #endif /* CAROM_ENABLE_POLYGONS */
 
-/* Manifold of bodies A (index a) and B (index b > a); 0 if not touching. */
-int cr_collide(const cr_body *A, const cr_body *B, float margin, cr_manifold *m)
-{
-    m->count = 0;
-    if (A->shape == CAROM_SHAPE_CIRCLE && B->shape == CAROM_SHAPE_CIRCLE)
-        return cr_circle_circle(A, B, margin, m);
+/* Shape-pair dispatch: [kind of A][kind of B]; NULL: the pair never
+ * collides in this build. */
+static const cr_collide_fn cr_collide_table[2][2] = {
+    {cr_circles,
 #if CAROM_ENABLE_POLYGONS
-    if (A->shape == CAROM_SHAPE_POLYGON && B->shape == CAROM_SHAPE_CIRCLE)
-        return cr_polygon_circle(A, B, margin, m);
-    if (A->shape == CAROM_SHAPE_CIRCLE && B->shape == CAROM_SHAPE_POLYGON) {
-        int hit = cr_polygon_circle(B, A, margin, m);
-        if (hit)
-            m->n = cr_vneg(m->n);
-        return hit;
-    }
-    return cr_polygon_polygon(A, B, margin, m);
+     cr_circle_polygon},
+    {cr_polygon_circle,
+#if CAROM_ENABLE_POLYGON_POLYGON
+     cr_polygons},
 #else
-    return 0;
+     0},
 #endif
+#else
+     0},
+    {0, 0},
+#endif
+};
+
+int cr_collide(const cr_shape *A, cr_v2 xa, cr_rot qa, const cr_shape *B,
+               cr_v2 xb, cr_rot qb, float reach, float face_tol,
+               cr_manifold *m)
+{
+    cr_collide_fn fn = cr_collide_table[A->kind][B->kind];
+    cr_v2 p;
+    cr_rot q;
+    int k, hit;
+    m->count = 0;
+    if (!fn)
+        return 0;
+    /* B relative to A, in A's frame */
+    p = cr_inv_rotate(qa, cr_vsub(xb, xa));
+    q = cr_rot_relative(qa, qb);
+    hit = fn(A, B, p, q, reach, face_tol, m);
+    if (!hit)
+        return 0;
+    m->n = cr_rotate(qa, m->n);
+    for (k = 0; k < m->count; ++k)
+        m->pts[k].p = cr_vadd(xa, cr_rotate(qa, m->pts[k].p));
+    return m->count;
 }
 
-/*
- * A lower bound of the distance between two shapes (negative: overlap), for
- * conservative advancement: exact for pairs with a circle; for polygons the
- * separating-axis separation, which is the distance whenever the closest
- * features are a vertex and an edge and never more than it.
- */
-float cr_separation(const cr_body *A, const cr_body *B)
+/* A margin larger than any distance: collide at any range. */
+#define CR_FAR 3.0e38f
+
+float cr_separation(const cr_shape *A, cr_v2 xa, cr_rot qa, const cr_shape *B,
+                    cr_v2 xb, cr_rot qb)
 {
-    cr_manifold m;
-    if (A->shape == CAROM_SHAPE_CIRCLE && B->shape == CAROM_SHAPE_CIRCLE)
-        return cr_sub(cr_vlen(cr_vsub(B->x, A->x)), cr_add(A->radius, B->radius));
+    if (A->kind == CAROM_SHAPE_CIRCLE && B->kind == CAROM_SHAPE_CIRCLE)
+        return cr_sub(cr_vlen(cr_vsub(xb, xa)), cr_add(A->radius, B->radius));
 #if CAROM_ENABLE_POLYGONS
-    if (A->shape == CAROM_SHAPE_POLYGON && B->shape == CAROM_SHAPE_CIRCLE) {
-        cr_polygon_circle(A, B, CR_FAR, &m);
-        return m.pts[0].sep;
-    }
-    if (A->shape == CAROM_SHAPE_CIRCLE) {
-        cr_polygon_circle(B, A, CR_FAR, &m);
-        return m.pts[0].sep;
-    }
     {
-        int fa, fb;
-        (void)m;
-        return cr_max(cr_max_separation(A, B, &fa), cr_max_separation(B, A, &fb));
-    }
-#else
-    (void)m;
-    return 0.0f;
+        cr_manifold m;
+        cr_v2 p = cr_inv_rotate(qa, cr_vsub(xb, xa));
+        cr_rot q = cr_rot_relative(qa, qb);
+        if (A->kind == CAROM_SHAPE_POLYGON && B->kind == CAROM_SHAPE_CIRCLE) {
+            cr_polygon_circle_at(A, p, B->radius, CR_FAR, &m, 0);
+            return m.pts[0].sep;
+        }
+        if (A->kind == CAROM_SHAPE_CIRCLE) {
+            cr_v2 c = cr_inv_rotate(q, cr_vneg(p));
+            cr_polygon_circle_at(B, c, A->radius, CR_FAR, &m, 1);
+            return m.pts[0].sep;
+        }
+#if CAROM_ENABLE_POLYGON_POLYGON
+        {
+            cr_v2 w[CAROM_MAX_POLYGON_VERTICES];
+            int j, fa, fb;
+            float sa, sb;
+            for (j = 0; j < B->count; ++j)
+                w[j] = cr_vadd(p, cr_rotate(q, B->verts[j]));
+            sa = cr_max_separation(A, w, B->count, &fa);
+            for (j = 0; j < A->count; ++j)
+                w[j] = cr_inv_rotate(q, cr_vsub(A->verts[j], p));
+            sb = cr_max_separation(B, w, A->count, &fb);
+            return cr_max(sa, sb);
+        }
 #endif
+    }
+#endif
+    return CR_FAR;
 }

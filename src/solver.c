@@ -1,551 +1,614 @@
 /*
- * solver.c -- contact impulses.
+ * solver.c -- the contact solver: substeps of sequential impulses, with
+ * overlap removed on positions only, on velocity Verlet.
  *
- * Velocities: sequential impulses (projected Gauss-Seidel) on every contact
- * point, with accumulated impulses clamped to >= 0 (normal) and to the
- * Coulomb cone |pt| <= mu pn (friction). Each point aims for the Newton
- * restitution law
+ * A step is cut into substeps of length h. In each, for the contacts the
+ * solver takes:
+ *   1. kick: v += a h (the forces), then re-apply the impulses accumulated
+ *      so far (warm start: at rest they are exactly the weight);
+ *   2. velocity sweeps: sequential impulses on accumulated impulses clamped
+ *      to >= 0, with Coulomb friction (|pt| <= mu pn per point). The
+ *      target is vn >= 0 at a touching point; a point still apart may close
+ *      exactly its gap in the substep (speculative), which is what stops a
+ *      thin rod's far end on a thin floor, however fast it sweeps;
+ *   3. move: every body drifts over the substep, from its start velocity to
+ *      the solved one at constant acceleration (events.c takes the impacts
+ *      at their instants inside this motion);
+ *   4. position sweep: what overlap is left is removed, a fraction
+ *      CAROM_POSITION_CORRECTION per substep, by moving positions along
+ *      pseudo-velocities that are then dropped: no momentum is added, so
+ *      overlap recovery never turns into bounce;
+ *   5. relax sweeps: velocity sweeps again, after the move.
+ * After the last substep the discrete method applies restitution once, to
+ * points hit faster than the rest speed (Box2D v3's pass); the events
+ * methods have taken their impacts at their instants already.
  *
- *     vn+ = -e vn-      if the approach speed -vn- exceeds rest_speed,
- *     vn+ >= 0          otherwise (resting contact),
+ * This is Box2D v3's "soft step" with its push-out replaced by Box2D 2.4's
+ * split position correction. The soft constraint of v3 is a stiff spring:
+ * under a load W it settles W / (m w^2) deep, so a stack sinks by that much
+ * per box of load above each contact (11 cm for 40 boxes at 30 Hz); and a
+ * rigid push-out through the velocities, undamped, rings in tall stacks
+ * because one sweep cannot take the push-out velocity back out of them.
+ * The split correction has neither fault: at rest the warm-started
+ * impulses are exact and the overlap goes to zero.
  *
- * where vn- is the relative normal velocity before the solve. For a single
- * head-on contact one sweep gives exactly the 1D formula of the design
- * note, corrected as in ERRATA.md 1-2:
- *     P = (1 + e) (-vn-) / (1/m_a + 1/m_b + angular terms).
- * Impulses are warm-started from the last step's when the same features
- * touch, so a resting stack starts each step from its converged forces and
- * does not jitter.
+ * The drift of step 3 is the trapezoid x += h (v0 + v1) / 2: for free
+ * flight it is velocity Verlet exactly, and for a resting body (v0 = v1 = 0)
+ * it moves nothing, so a stack at rest reports zero velocity and stays put.
+ * So the speculative target closes the gap with the substep's mean
+ * velocity: s + h (vn0 + vn) / 2 = 0, i.e. vn = -(2 s / h + vn0), never a
+ * bounce.
  *
- * The two points of a face contact are coupled through rotation: pushing
- * one end of a box changes the velocity at the other end. Solving them one
- * after the other converges slowly (a box rocks on its support). So the
- * normal impulses of a 2-point manifold are solved together, exactly, as
- * the 2x2 linear complementarity problem
- *     x >= 0,  K x + b >= 0,  x_i (K x + b)_i = 0,
- * by trying its four cases (both points pushing, only one, none).
- *
- * Positions: the drift of a step moves a resting body into its support by
- * |g| dt^2 / 2; a projection (nonlinear Gauss-Seidel on the linearised
- * separations) removes a fraction CAROM_POSITION_BETA of each remaining
- * overlap per sweep, without touching velocities, so no energy is added.
- *
- * Mixing: e = max(e_a, e_b) and mu = sqrt(mu_a mu_b), as Box2D does, so the
- * two engines can be compared on identical scenes.
+ * Anchors, normals and effective masses are those of the step start; the
+ * separation is updated from the bodies' displacements dp and rotations
+ * dq since then: s = base_sep + n . (dp_b + dq_b rb - dp_a - dq_a ra). The
+ * two points of a face contact are coupled through rotation, so their
+ * normal impulses are solved together, as the 2x2 complementarity problem
+ * (Box2D 2.4's block solver): a box rests and rises level. Contacts with a
+ * static or kinematic body are swept last, so their solve has the last
+ * word: a light box under a heavy one is not pushed into the floor.
  */
-#include "internal.h"
+#include "solver.h"
 
-/* Smallest det(K) / (k11 k22) for which a 2-point manifold is solved as a
- * block (1 - cos^2 of the angle between the two points' impulse rows). */
-#define CR_BLOCK_MIN_DET 1.0e-3f
-
-/* Approach speed at the start of a step, as a fraction of rest_speed, below
- * which a contact counts as having been at rest (solver residue). */
-#define CR_REST_TOL_FRACTION 0.01f
-
-/* Gauss-Seidel visits of a single impact (events method): the normal part
- * is exact after one, friction and the normal/tangent coupling converge in
- * a few. */
-#define CR_IMPACT_ITERATIONS 4
-
-static cr_v2 cr_tangent(cr_v2 n) { return cr_v(n.y, cr_neg(n.x)); }
-
-/* 1 / (1/m_a + 1/m_b + ra_x^2 / I_a + rb_x^2 / I_b) for lever arms
- * ra_x = ra x dir, rb_x = rb x dir. */
-static float cr_effective_mass(const cr_body *A, const cr_body *B, float rla,
-                               float rlb)
+void cr_substep_init(cr_substep *s, const carom_world *w, float h)
 {
-    float k = cr_add(cr_add(A->inv_m, B->inv_m),
-                     cr_add(cr_mul(A->inv_I, cr_mul(rla, rla)),
-                            cr_mul(B->inv_I, cr_mul(rlb, rlb))));
-    return cr_gt(k, 0.0f) ? cr_div(1.0f, k) : 0.0f;
+    s->h = h;
+    s->inv_h = cr_div(1.0f, h);
+    s->push = w->scale.push;
 }
 
-/* Lever arm of an impulse along dir at r from the centre of b: r x dir,
- * except for the normal of a circle, where it is 0 by geometry (rounding
- * would otherwise spin every circle a little at every impact). */
-static float cr_lever(const cr_body *b, cr_v2 r, cr_v2 dir, int normal)
+void cr_solver_begin(carom_world *w)
 {
-    if (normal && b->shape == CAROM_SHAPE_CIRCLE)
-        return 0.0f;
-    return cr_vcross(r, dir);
-}
-
-/* Relative velocity of B's material point at rb w.r.t. A's at ra. */
-static cr_v2 cr_relative_velocity(const cr_body *A, const cr_body *B,
-                                  cr_v2 ra, cr_v2 rb)
-{
-    cr_v2 vb = cr_vadd(B->vel, cr_vcross_sv(B->w, rb));
-    cr_v2 va = cr_vadd(A->vel, cr_vcross_sv(A->w, ra));
-    return cr_vsub(vb, va);
-}
-
-/* Impulse d along dir at a point with lever arms rla, rlb: -d on A, +d on B. */
-static void cr_apply(cr_body *A, cr_body *B, float rla, float rlb, cr_v2 dir,
-                     float d)
-{
-    cr_v2 P = cr_vscale(d, dir);
-    A->vel = cr_vmadd(A->vel, cr_neg(A->inv_m), P);
-    B->vel = cr_vmadd(B->vel, B->inv_m, P);
-#if CAROM_ENABLE_ROTATION
-    A->w = cr_sub(A->w, cr_mul(A->inv_I, cr_mul(rla, d)));
-    B->w = cr_add(B->w, cr_mul(B->inv_I, cr_mul(rlb, d)));
-#else
-    (void)rla;
-    (void)rlb;
-#endif
-}
-
-/*
- * Which share of a non-bouncing point's impulse is a resting force, to be
- * carried into the next drift (cr_solver_store)? The approach speed the
- * solver cancels has two sources: motion the bodies already had at the
- * start of the step (an impact: the impulse stops it once), and the kick
- * the step's own forces gave them (a force: it acts again next step). With
- * approach = -vn0 after the kick and before = the approach at the start of
- * the step, the share is 1 - before / approach. A body at rest in a stack
- * has before ~ 0 (solver residue below CR_REST_TOL_FRACTION of rest_speed
- * counts as 0) and share 1; a ball landing softly at 0.4 m/s under gravity
- * has share |g| dt / 0.4, so the force it keeps is its weight, not more.
- */
-static float cr_resting_fraction(const cr_body *A, const cr_body *B,
-                                 const cr_point *p, cr_v2 n, float rest_speed)
-{
-    cr_v2 vb = cr_vadd(B->vel_saved, cr_vcross_sv(B->w_saved, p->rb));
-    cr_v2 va = cr_vadd(A->vel_saved, cr_vcross_sv(A->w_saved, p->ra));
-    float before = cr_neg(cr_vdot(cr_vsub(vb, va), n));
-    float approach = cr_neg(p->vn0);
-    if (cr_le(before, cr_mul(CR_REST_TOL_FRACTION, rest_speed)) ||
-        cr_le(approach, 0.0f))
-        return 1.0f;
-    return cr_max(0.0f, cr_sub(1.0f, cr_div(before, approach)));
-}
-
-/*
- * Approach speed along n at ra, rb at the END of a step, with last step's
- * resting contact forces applied to the velocities as they were to the
- * positions (the drift).
- * The velocities the solver sees leave those forces out, because the solver
- * applies them itself as impulses; but the approach they cancel is not
- * motion: a box resting on the ground "approaches" it at |g| dt at the end
- * of every step, which is no impact however large dt is. A body that was
- * not resting (no force) keeps its whole approach.
- */
-static float cr_held(const cr_body *A, const cr_body *B, cr_v2 ra, cr_v2 rb,
-                     cr_v2 n, float dt)
-{
-    cr_v2 ab = cr_vadd(B->acc_c, cr_vcross_sv(B->alpha_c, rb));
-    cr_v2 aa = cr_vadd(A->acc_c, cr_vcross_sv(A->alpha_c, ra));
-    return cr_mul(cr_vdot(cr_vsub(ab, aa), n), dt);
-}
-
-float cr_effective_approach(const cr_body *A, const cr_body *B, cr_v2 ra,
-                            cr_v2 rb, cr_v2 n, float dt)
-{
-    return cr_sub(cr_neg(cr_vdot(cr_relative_velocity(A, B, ra, rb), n)),
-                  cr_held(A, B, ra, rb, n, dt));
-}
-
-/*
- * Approach speed at the instant of contact. The overlap-based step finds
- * an impact only after the bodies have moved a depth d = -sep past it,
- * still accelerating towards each other at a_close, so the speed at the
- * end of the step is too high: v^2 = v_c^2 + 2 a_close d. Bouncing with
- * e v instead of e v_c, and then being projected out of the overlap, would
- * pump energy in (a ball with e = 0.8 hops forever at ~0.5 m/s). With v_c
- * the kinetic energy after the bounce is exactly (e v_c)^2 m / 2.
- */
-static float cr_contact_speed(const cr_body *A, const cr_body *B,
-                              const cr_point *p, cr_v2 n, float dt,
-                              int step_end)
-{
-    /* at the end of a step the velocities leave last step's resting forces
-     * out (the solver re-applies them); inside it, at an impact, a body's
-     * velocity on its drift already includes them */
-    float v = step_end ? cr_sub(cr_neg(p->vn0), cr_held(A, B, p->ra, p->rb, n, dt))
-                       : cr_neg(p->vn0);
-    float depth = cr_neg(p->sep), a_close, v2;
-    cr_v2 ab, aa;
-    if (!cr_gt(v, 0.0f))
-        return 0.0f;
-    if (!cr_gt(depth, 0.0f))
-        return v;
-    ab = cr_vadd(B->acc, cr_vcross_sv(B->alpha, p->rb));
-    aa = cr_vadd(A->acc, cr_vcross_sv(A->alpha, p->ra));
-    a_close = cr_max(0.0f, cr_neg(cr_vdot(cr_vsub(ab, aa), n)));
-    v2 = cr_sub(cr_mul(v, v), cr_mul(cr_mul(2.0f, a_close), depth));
-    return cr_gt(v2, 0.0f) ? cr_sqrt(v2) : 0.0f;
-}
-
-/* Copy last step's accumulated impulses onto points with the same ids.
- * Both manifold arrays are sorted by (a, b), so one merge walk suffices. */
-static void cr_match_previous(carom_world *w)
-{
-    int i, j = 0;
-    for (i = 0; i < w->manifold_count; ++i) {
-        cr_manifold *m = &w->manifolds[i];
-        int k, l;
-        while (j < w->prev_manifold_count &&
-               (w->prev_manifolds[j].a < m->a ||
-                (w->prev_manifolds[j].a == m->a &&
-                 w->prev_manifolds[j].b < m->b)))
-            ++j;
-        if (j >= w->prev_manifold_count || w->prev_manifolds[j].a != m->a ||
-            w->prev_manifolds[j].b != m->b)
-            continue;
-        for (k = 0; k < m->count; ++k)
-            for (l = 0; l < w->prev_manifolds[j].count; ++l)
-                if (w->prev_manifolds[j].pts[l].id == m->pts[k].id) {
-                    m->pts[k].pn = w->prev_manifolds[j].pts[l].pn;
-                    m->pts[k].pt = w->prev_manifolds[j].pts[l].pt;
-                }
+    int i;
+    for (i = 0; i < w->slot_count; ++i) {
+        cr_solver_body *sb = &w->sbody[i];
+        sb->dp = cr_v(0.0f, 0.0f);
+        sb->dq = cr_rot_identity();
+        sb->v0 = w->bodies[i].v;
+        sb->w0 = w->bodies[i].w;
+        sb->vp = cr_v(0.0f, 0.0f);
+        sb->wp = 0.0f;
+        sb->active = 0;
     }
 }
 
-/* resting_only: every point aims for vn >= 0 (no restitution); used to
- * find the resting contact forces of a state (world.c, priming). */
-/* Mixing, anchors, effective masses, pre-solve velocities and targets of
- * one manifold. */
-static void cr_prepare_manifold(carom_world *w, cr_manifold *m,
-                                int resting_only, int step_end)
+float cr_rest_speed(const carom_world *w, int a, int b)
 {
+    const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
+    float acc;
+    if (!cr_lt(w->def.rest_speed, 0.0f))
+        return w->def.rest_speed;
+    acc = cr_max(cr_vlen(A->a), cr_vlen(B->a));
+    return cr_mul(cr_mul(CAROM_REST_SPEED_PER_ACCEL_DT, acc), w->def.dt);
+}
+
+static int cr_moves(const cr_body *b)
+{
+    return b->type != CAROM_BODY_STATIC;
+}
+
+static int cr_grounded(const carom_world *w, const cr_contact *c)
+{
+    return w->bodies[c->a].type != CAROM_BODY_DYNAMIC ||
+           w->bodies[c->b].type != CAROM_BODY_DYNAMIC;
+}
+
+float cr_contact_approach(const carom_world *w, const cr_contact *c)
+{
+    const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+    float fastest = 0.0f;
     int k;
-    float rest = w->def.rest_speed;
-    cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
-    cr_v2 t = cr_tangent(m->n);
-    m->restitution = cr_max(A->restitution, B->restitution);
-#if CAROM_ENABLE_FRICTION
-    m->friction = cr_sqrt(cr_mul(A->friction, B->friction));
-#else
-    m->friction = 0.0f;
-#endif
-    for (k = 0; k < m->count; ++k) {
-        cr_point *p = &m->pts[k];
-        p->ra = cr_vsub(p->p, A->x);
-        p->rb = cr_vsub(p->p, B->x);
-        p->rna = cr_lever(A, p->ra, m->n, 1);
-        p->rnb = cr_lever(B, p->rb, m->n, 1);
-        p->rta = cr_lever(A, p->ra, t, 0);
-        p->rtb = cr_lever(B, p->rb, t, 0);
-        p->mass_n = cr_effective_mass(A, B, p->rna, p->rnb);
-        p->mass_t = cr_effective_mass(A, B, p->rta, p->rtb);
-        p->vn0 = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
-        p->approach = cr_contact_speed(A, B, p, m->n, w->def.dt, step_end);
-        p->target = !resting_only && cr_gt(p->approach, rest)
-                        ? cr_mul(m->restitution, p->approach)
-                        : 0.0f;
-        p->rest_frac = cr_gt(p->target, 0.0f)
-                           ? 0.0f
-                           : cr_resting_fraction(A, B, p, m->n, rest);
+    for (k = 0; k < c->count; ++k) {
+        const cr_contact_point *p = &c->pts[k];
+        cr_v2 dv = cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
+                           cr_point_velocity(A->v, A->w, p->ra));
+        fastest = cr_max(fastest, cr_neg(cr_vdot(dv, c->n)));
     }
-    m->block = 0;
-    if (m->count == 2) {
-        float r1a = m->pts[0].rna, r1b = m->pts[0].rnb;
-        float r2a = m->pts[1].rna, r2b = m->pts[1].rnb;
-        float lin = cr_add(A->inv_m, B->inv_m);
-        float det;
-        m->k11 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r1a, r1a)),
-                                    cr_mul(B->inv_I, cr_mul(r1b, r1b))));
-        m->k22 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r2a, r2a)),
-                                    cr_mul(B->inv_I, cr_mul(r2b, r2b))));
-        m->k12 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r1a, r2a)),
-                                    cr_mul(B->inv_I, cr_mul(r1b, r2b))));
-        /* points too close together make K near singular: then solve
-         * them one after the other */
-        det = cr_sub(cr_mul(m->k11, m->k22), cr_mul(m->k12, m->k12));
-        m->block = cr_gt(det, cr_mul(CR_BLOCK_MIN_DET, cr_mul(m->k11, m->k22)));
-    }
+    return fastest;
 }
 
-static void cr_warm_start(carom_world *w, const cr_manifold *m)
+int cr_solver_classify(carom_world *w, int events)
 {
-    int k;
-    cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
-    cr_v2 t = cr_tangent(m->n);
-    for (k = 0; k < m->count; ++k) {
-        const cr_point *p = &m->pts[k];
-        if (!cr_eq(p->pn, 0.0f))
-            cr_apply(A, B, p->rna, p->rnb, m->n, p->pn);
-        if (!cr_eq(p->pt, 0.0f))
-            cr_apply(A, B, p->rta, p->rtb, t, p->pt);
-    }
-}
-
-void cr_solver_prepare(carom_world *w, int resting_only)
-{
-    int i, k;
-    for (i = 0; i < w->manifold_count; ++i) {
-        cr_manifold *m = &w->manifolds[i];
-        for (k = 0; k < m->count; ++k) {
-            m->pts[k].pn = 0.0f;
-            m->pts[k].pt = 0.0f;
+    int i, solved = 0, pass;
+    for (i = 0; i < w->awake_count; ++i)
+        w->sbody[w->awake[i]].active = 0;
+    for (i = 0; i < w->contact_count; ++i) {
+        cr_contact *c = &w->contacts[i];
+        const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+        int take = 1;
+        /* an approach faster than the rest speed is an impact: the event
+         * loop takes it at its instant */
+        if (events)
+            take = !cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b));
+        if (take) {
+            c->flags |= CR_CONTACT_SOLVE;
+            if (cr_moves(A))
+                w->sbody[c->a].active = 1;
+            if (cr_moves(B))
+                w->sbody[c->b].active = 1;
+            ++solved;
+        } else {
+            c->flags &= ~CR_CONTACT_SOLVE;
         }
     }
-    cr_match_previous(w);
-    for (i = 0; i < w->manifold_count; ++i)
-        cr_prepare_manifold(w, &w->manifolds[i], resting_only, 1);
-    /* warm start only now: every vn0 above is a pre-solve velocity */
-    for (i = 0; i < w->manifold_count; ++i)
-        cr_warm_start(w, &w->manifolds[i]);
+    /* the order of the sweeps: moving pairs, then grounded ones */
+    w->solve_count = 0;
+    for (pass = 0; pass < 2; ++pass)
+        for (i = 0; i < w->contact_count; ++i) {
+            const cr_contact *c = &w->contacts[i];
+            if ((c->flags & CR_CONTACT_SOLVE) && cr_grounded(w, c) == pass)
+                w->solve_order[w->solve_count++] = i;
+        }
+    return solved;
+}
+
+/* Impulse P along dir at lever arms la, lb: -P on A, +P on B. */
+static void cr_apply(cr_body *A, cr_body *B, float la, float lb, cr_v2 dir,
+                     float P)
+{
+    cr_v2 I = cr_vscale(P, dir);
+    A->v = cr_vmadd(A->v, cr_neg(A->inv_m), I);
+    B->v = cr_vmadd(B->v, B->inv_m, I);
+#if CAROM_ENABLE_ROTATION
+    A->w = cr_sub(A->w, cr_mul(A->inv_I, cr_mul(la, P)));
+    B->w = cr_add(B->w, cr_mul(B->inv_I, cr_mul(lb, P)));
+#else
+    (void)la;
+    (void)lb;
+#endif
+}
+
+static float cr_normal_lever(const carom_world *w, int body, cr_v2 r, cr_v2 n)
+{
+    return w->info[body].shape.kind == CAROM_SHAPE_CIRCLE ? 0.0f : cr_vcross(r, n);
+}
+
+void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s)
+{
+    int i, k;
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        cr_body *b = &w->bodies[id];
+        cr_solver_body *sb = &w->sbody[id];
+        if (!sb->active)
+            continue;
+        sb->v0 = b->v;
+        sb->w0 = b->w;
+        if (b->type == CAROM_BODY_DYNAMIC) {
+            b->v = cr_vmadd(b->v, s->h, b->a);
+#if CAROM_ENABLE_ROTATION
+            b->w = cr_add(b->w, cr_mul(s->h, b->alpha));
+#endif
+        }
+    }
+    for (i = 0; i < w->contact_count; ++i) {
+        const cr_contact *c = &w->contacts[i];
+        cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+        cr_v2 t = cr_vright(c->n);
+        if (!(c->flags & CR_CONTACT_SOLVE))
+            continue;
+        for (k = 0; k < c->count; ++k) {
+            const cr_contact_point *p = &c->pts[k];
+            if (!cr_eq(p->pn, 0.0f))
+                cr_apply(A, B, cr_normal_lever(w, c->a, p->ra, c->n),
+                         cr_normal_lever(w, c->b, p->rb, c->n), c->n, p->pn);
+            if (!cr_eq(p->pt, 0.0f))
+                cr_apply(A, B, cr_vcross(p->ra, t), cr_vcross(p->rb, t), t, p->pt);
+        }
+    }
+}
+
+/* Separation of point p now, from the bodies' motion since the step start. */
+static float cr_current_sep(const cr_contact *c, const cr_contact_point *p,
+                            const cr_solver_body *sa, const cr_solver_body *sb)
+{
+    cr_v2 d = cr_vadd(cr_vsub(sb->dp, sa->dp),
+                      cr_vsub(cr_rotate(sb->dq, p->rb), cr_rotate(sa->dq, p->ra)));
+    return cr_add(p->base_sep, cr_vdot(c->n, d));
+}
+
+static float cr_point_vn(cr_v2 va, float wa, cr_v2 vb, float wb, const cr_contact *c,
+                         const cr_contact_point *p)
+{
+    return cr_vdot(cr_vsub(cr_point_velocity(vb, wb, p->rb),
+                           cr_point_velocity(va, wa, p->ra)),
+                   c->n);
 }
 
 /*
- * The 2x2 linear complementarity problem of a 2-point manifold:
- *     find x >= 0 with r = K x + b >= 0 and x_i r_i = 0,
- * K = [k11 k12; k12 k22] symmetric positive definite. Tries the four cases
- * in turn (both points active, only the first, only the second, none).
- * Returns 0 if none fits, which only rounding at a degenerate K can cause.
+ * Solve the normal rows of contact c for velocities (va, wa), (vb, wb) of
+ * its bodies, accumulated impulses acc[] (>= 0) and targets vn + bias[] >=
+ * 0: both points as one 2x2 problem when the manifold allows, else one
+ * after the other. Calls back with each point's impulse change.
  */
-static int cr_lcp2(const cr_manifold *m, float b1, float b2, float *x1,
-                   float *x2)
-{
-    float det = cr_sub(cr_mul(m->k11, m->k22), cr_mul(m->k12, m->k12));
-    float y1 = cr_div(cr_sub(cr_mul(m->k12, b2), cr_mul(m->k22, b1)), det);
-    float y2 = cr_div(cr_sub(cr_mul(m->k12, b1), cr_mul(m->k11, b2)), det);
-    if (cr_ge(y1, 0.0f) && cr_ge(y2, 0.0f)) {
-        *x1 = y1;
-        *x2 = y2;
-        return 1;
-    }
-    y1 = cr_div(cr_neg(b1), m->k11);
-    if (cr_ge(y1, 0.0f) && cr_ge(cr_add(cr_mul(m->k12, y1), b2), 0.0f)) {
-        *x1 = y1;
-        *x2 = 0.0f;
-        return 1;
-    }
-    y2 = cr_div(cr_neg(b2), m->k22);
-    if (cr_ge(y2, 0.0f) && cr_ge(cr_add(cr_mul(m->k12, y2), b1), 0.0f)) {
-        *x1 = 0.0f;
-        *x2 = y2;
-        return 1;
-    }
-    if (cr_ge(b1, 0.0f) && cr_ge(b2, 0.0f)) {
-        *x1 = 0.0f;
-        *x2 = 0.0f;
-        return 1;
-    }
-    return 0;
-}
+typedef void (*cr_apply_fn)(carom_world *w, const cr_contact *c, int k, float d);
 
-/* Normal impulses of a 2-point manifold, solved together. With accumulated
- * impulses a and new ones x, the velocity residual is K x + b with
- * b = vn - target - K a. Returns 0 to ask for the one-at-a-time fallback. */
-static int cr_block_normal(cr_manifold *m, cr_body *A, cr_body *B)
-{
-    cr_point *p1 = &m->pts[0], *p2 = &m->pts[1];
-    float a1 = p1->pn, a2 = p2->pn, x1, x2, b1, b2;
-    float vn1 = cr_vdot(cr_relative_velocity(A, B, p1->ra, p1->rb), m->n);
-    float vn2 = cr_vdot(cr_relative_velocity(A, B, p2->ra, p2->rb), m->n);
-    b1 = cr_sub(cr_sub(vn1, p1->target),
-                cr_add(cr_mul(m->k11, a1), cr_mul(m->k12, a2)));
-    b2 = cr_sub(cr_sub(vn2, p2->target),
-                cr_add(cr_mul(m->k12, a1), cr_mul(m->k22, a2)));
-    if (!cr_lcp2(m, b1, b2, &x1, &x2))
-        return 0;
-    p1->pn = x1;
-    p2->pn = x2;
-    cr_apply(A, B, p1->rna, p1->rnb, m->n, cr_sub(x1, a1));
-    cr_apply(A, B, p2->rna, p2->rnb, m->n, cr_sub(x2, a2));
-    return 1;
-}
-
-/* One Gauss-Seidel visit of a manifold: friction, then normal impulses. */
-static void cr_solve_manifold(carom_world *w, cr_manifold *m)
+static void cr_normal_rows(carom_world *w, const cr_contact *c, float *acc,
+                           const float *bias, const float *vn, cr_apply_fn apply,
+                           float (*vn_of)(carom_world *, const cr_contact *, int))
 {
     int k;
-    cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
+    if (c->count == 2 && c->block) {
+        float a1 = acc[0], a2 = acc[1], x1, x2;
+        float b1 = cr_sub(cr_add(vn[0], bias[0]),
+                          cr_add(cr_mul(c->k11, a1), cr_mul(c->k12, a2)));
+        float b2 = cr_sub(cr_add(vn[1], bias[1]),
+                          cr_add(cr_mul(c->k12, a1), cr_mul(c->k22, a2)));
+        if (cr_lcp2(c->k11, c->k12, c->k22, b1, b2, &x1, &x2)) {
+            acc[0] = x1;
+            acc[1] = x2;
+            apply(w, c, 0, cr_sub(x1, a1));
+            apply(w, c, 1, cr_sub(x2, a2));
+            return;
+        }
+    }
+    for (k = 0; k < c->count; ++k) {
+        /* the first point's impulse changed the second's velocity */
+        float v = k == 0 ? vn[0] : vn_of(w, c, k);
+        float x = cr_max(cr_sub(acc[k], cr_mul(c->pts[k].mass_n, cr_add(v, bias[k]))),
+                         0.0f);
+        float d = cr_sub(x, acc[k]);
+        acc[k] = x;
+        apply(w, c, k, d);
+    }
+}
+
+/* ---- velocities ------------------------------------------------------------ */
+
+static void cr_apply_velocity(carom_world *w, const cr_contact *c, int k, float d)
+{
+    const cr_contact_point *p = &c->pts[k];
+    cr_apply(&w->bodies[c->a], &w->bodies[c->b],
+             cr_normal_lever(w, c->a, p->ra, c->n),
+             cr_normal_lever(w, c->b, p->rb, c->n), c->n, d);
+}
+
+static float cr_velocity_vn(carom_world *w, const cr_contact *c, int k)
+{
+    const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+    return cr_point_vn(A->v, A->w, B->v, B->w, c, &c->pts[k]);
+}
+
+static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s,
+                              int first)
+{
+    const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
+    float bias[CAROM_MAX_MANIFOLD_POINTS], vn[CAROM_MAX_MANIFOLD_POINTS];
+    float acc[CAROM_MAX_MANIFOLD_POINTS];
+    int k;
+    for (k = 0; k < c->count; ++k) {
+        const cr_contact_point *p = &c->pts[k];
+        float sep = cr_current_sep(c, p, sa, sb);
+        bias[k] = 0.0f;
+        if (cr_gt(sep, 0.0f)) {
+            if (first) {
+                /* close the gap with the substep's mean velocity */
+                float vn0 = cr_point_vn(sa->v0, sa->w0, sb->v0, sb->w0, c, p);
+                bias[k] = cr_max(0.0f, cr_add(cr_mul(2.0f, cr_mul(sep, s->inv_h)), vn0));
+            } else {
+                bias[k] = cr_mul(sep, s->inv_h);
+            }
+        }
+        vn[k] = cr_velocity_vn(w, c, k);
+        acc[k] = p->pn;
+        /* restitution (discrete method) uses the approach of the substep
+         * in which the point first pushes: nearer the instant of impact
+         * than the start of the step */
+        if (first && cr_eq(p->max_pn, 0.0f))
+            c->pts[k].rel_vn = vn[k];
+    }
+    cr_normal_rows(w, c, acc, bias, vn, cr_apply_velocity, cr_velocity_vn);
+    for (k = 0; k < c->count; ++k) {
+        c->pts[k].pn = acc[k];
+        c->pts[k].max_pn = cr_max(c->pts[k].max_pn, acc[k]);
+    }
 #if CAROM_ENABLE_FRICTION
-    if (cr_gt(m->friction, 0.0f)) {
-        cr_v2 t = cr_tangent(m->n);
-        for (k = 0; k < m->count; ++k) {
-            cr_point *p = &m->pts[k];
-            float vt = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), t);
-            float limit = cr_mul(m->friction, p->pn);
+    if (cr_gt(c->friction, 0.0f)) {
+        cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+        cr_v2 t = cr_vright(c->n);
+        for (k = 0; k < c->count; ++k) {
+            cr_contact_point *p = &c->pts[k];
+            float vt = cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
+                                       cr_point_velocity(A->v, A->w, p->ra)),
+                               t);
+            float limit = cr_mul(c->friction, p->pn);
             float pt = cr_clamp(cr_sub(p->pt, cr_mul(p->mass_t, vt)),
                                 cr_neg(limit), limit);
             float d = cr_sub(pt, p->pt);
             p->pt = pt;
-            cr_apply(A, B, p->rta, p->rtb, t, d);
+            cr_apply(A, B, cr_vcross(p->ra, t), cr_vcross(p->rb, t), t, d);
         }
     }
 #endif
-    if (m->block && cr_block_normal(m, A, B))
-        return;
-    for (k = 0; k < m->count; ++k) {
-        cr_point *p = &m->pts[k];
-        float vn = cr_vdot(cr_relative_velocity(A, B, p->ra, p->rb), m->n);
-        float pn = cr_max(cr_sub(p->pn, cr_mul(p->mass_n, cr_sub(vn, p->target))),
-                          0.0f);
-        float d = cr_sub(pn, p->pn);
-        p->pn = pn;
-        cr_apply(A, B, p->rna, p->rnb, m->n, d);
-    }
 }
 
-void cr_solver_velocities(carom_world *w, int iterations)
+void cr_solver_solve(carom_world *w, const cr_substep *s, int first,
+                     int iterations)
 {
     int it, j;
-    for (it = 0; it < iterations; ++it) {
-        for (j = 0; j < w->manifold_count; ++j) {
-            /* symmetric Gauss-Seidel: odd sweeps run backwards, so a push
-             * travels up a stack as fast as down it */
-            int i = (it & 1) ? w->manifold_count - 1 - j : j;
-            cr_solve_manifold(w, &w->manifolds[i]);
-        }
-    }
-}
-
-/*
- * One impact of the events method: the manifold of a pair at the instant
- * its surfaces meet, solved alone from zero impulses (the block solve makes
- * a 2-point impact exact in one visit; further visits settle friction).
- * Returns the total normal impulse; *approach gets the approach speed.
- */
-float cr_solver_impact(carom_world *w, cr_manifold *m, float *approach)
-{
-    int it, k, iterations;
-    float total = 0.0f, fastest = 0.0f;
-    for (k = 0; k < m->count; ++k) {
-        m->pts[k].pn = 0.0f;
-        m->pts[k].pt = 0.0f;
-    }
-    cr_prepare_manifold(w, m, 0, 0);
-    /* without friction the first visit is already exact */
-    iterations = cr_gt(m->friction, 0.0f) ? CR_IMPACT_ITERATIONS : 1;
     for (it = 0; it < iterations; ++it)
-        cr_solve_manifold(w, m);
-    for (k = 0; k < m->count; ++k) {
-        total = cr_add(total, m->pts[k].pn);
-        fastest = cr_max(fastest, m->pts[k].approach);
-    }
-    *approach = fastest;
-    return total;
+        for (j = 0; j < w->solve_count; ++j) {
+            /* extra sweeps (priming) alternate direction: symmetric
+             * Gauss-Seidel carries a load down a stack and the support up
+             * it equally fast */
+            int i = (it & 1) ? w->solve_count - 1 - j : j;
+            cr_contact *c = &w->contacts[w->solve_order[i]];
+            /* an impact inside the substep may have made it one */
+            if (c->flags & CR_CONTACT_SOLVE)
+                cr_solve_velocity(w, c, s, first && it == 0);
+        }
 }
 
-/* Separation of point p now, from its separation at detection and the
- * projection moves of both bodies so far (linearised in the rotation). */
-static float cr_current_sep(const cr_manifold *m, const cr_point *p,
-                            const cr_body *A, const cr_body *B)
-{
-    cr_v2 db = cr_vadd(B->dx, cr_vcross_sv(B->dtheta, p->rb));
-    cr_v2 da = cr_vadd(A->dx, cr_vcross_sv(A->dtheta, p->ra));
-    return cr_add(p->sep, cr_vdot(m->n, cr_vsub(db, da)));
-}
+/* ---- positions ---------------------------------------------------------------- */
 
-static void cr_move(cr_body *A, cr_body *B, const cr_point *p, cr_v2 n,
-                    float d)
+static void cr_apply_pseudo(carom_world *w, const cr_contact *c, int k, float d)
 {
-    cr_v2 P = cr_vscale(d, n);
-    A->dx = cr_vmadd(A->dx, cr_neg(A->inv_m), P);
-    B->dx = cr_vmadd(B->dx, B->inv_m, P);
+    const cr_contact_point *p = &c->pts[k];
+    const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+    cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
+    cr_v2 I = cr_vscale(d, c->n);
+    sa->vp = cr_vmadd(sa->vp, cr_neg(A->inv_m), I);
+    sb->vp = cr_vmadd(sb->vp, B->inv_m, I);
 #if CAROM_ENABLE_ROTATION
-    A->dtheta = cr_sub(A->dtheta, cr_mul(A->inv_I, cr_mul(p->rna, d)));
-    B->dtheta = cr_add(B->dtheta, cr_mul(B->inv_I, cr_mul(p->rnb, d)));
+    sa->wp = cr_sub(sa->wp, cr_mul(A->inv_I, cr_mul(cr_normal_lever(w, c->a, p->ra, c->n), d)));
+    sb->wp = cr_add(sb->wp, cr_mul(B->inv_I, cr_mul(cr_normal_lever(w, c->b, p->rb, c->n), d)));
 #else
     (void)p;
 #endif
 }
 
-/* The correction a point asks for: a fraction beta of its overlap, capped;
- * zero when separated. */
-static float cr_correction(float sep)
+static float cr_pseudo_vn(carom_world *w, const cr_contact *c, int k)
 {
-    if (!cr_lt(sep, 0.0f))
-        return 0.0f;
-    return cr_max(cr_mul(CAROM_POSITION_BETA, sep),
-                  cr_neg(CAROM_MAX_LINEAR_CORRECTION));
+    const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
+    return cr_point_vn(sa->vp, sa->wp, sb->vp, sb->wp, c, &c->pts[k]);
 }
 
-void cr_solver_positions(carom_world *w)
+void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
 {
-    int it, i, j, k;
-
-    for (i = 0; i < w->body_count; ++i) {
-        w->bodies[i].dx = cr_v(0.0f, 0.0f);
-        w->bodies[i].dtheta = 0.0f;
+    int it, i, k;
+    float cap = cr_mul(s->push, s->h);
+    for (i = 0; i < w->awake_count; ++i) {
+        cr_solver_body *sb = &w->sbody[w->awake[i]];
+        sb->vp = cr_v(0.0f, 0.0f);
+        sb->wp = 0.0f;
     }
-    for (it = 0; it < w->def.position_iterations; ++it) {
-        for (j = 0; j < w->manifold_count; ++j) {
-            int i = (it & 1) ? w->manifold_count - 1 - j : j;
-            cr_manifold *m = &w->manifolds[i];
-            cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
-            if (m->block) {
-                /* both points at once, so a symmetric overlap is removed
-                 * without tilting the body */
-                float c1 = cr_correction(cr_current_sep(m, &m->pts[0], A, B));
-                float c2 = cr_correction(cr_current_sep(m, &m->pts[1], A, B));
-                float x1, x2;
-                if (cr_eq(c1, 0.0f) && cr_eq(c2, 0.0f))
-                    continue;
-                if (cr_lcp2(m, c1, c2, &x1, &x2)) {
-                    cr_move(A, B, &m->pts[0], m->n, x1);
-                    cr_move(A, B, &m->pts[1], m->n, x2);
-                    continue;
-                }
+    for (it = 0; it < iterations; ++it)
+        for (i = 0; i < w->solve_count; ++i) {
+            cr_contact *c = &w->contacts[w->solve_order[i]];
+            const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
+            float bias[CAROM_MAX_MANIFOLD_POINTS], vn[CAROM_MAX_MANIFOLD_POINTS];
+            int any = 0;
+            if (!(c->flags & CR_CONTACT_SOLVE))
+                continue;
+            for (k = 0; k < c->count; ++k) {
+                float sep = cr_current_sep(c, &c->pts[k], sa, sb);
+                /* the part of the overlap to remove in this substep, as a
+                 * separating pseudo-velocity over h */
+                float fix = cr_min(cr_mul(CAROM_POSITION_CORRECTION, cr_neg(sep)), cap);
+                bias[k] = cr_neg(cr_mul(cr_max(fix, 0.0f), s->inv_h));
+                any |= cr_lt(bias[k], 0.0f);
+                vn[k] = cr_pseudo_vn(w, c, k);
+                c->pts[k].pp = it == 0 ? 0.0f : c->pts[k].pp;
             }
-            for (k = 0; k < m->count; ++k) {
-                cr_point *p = &m->pts[k];
-                float c = cr_correction(cr_current_sep(m, p, A, B));
-                if (cr_eq(c, 0.0f))
-                    continue;
-                cr_move(A, B, p, m->n, cr_neg(cr_mul(p->mass_n, c)));
+            if (!any && it == 0)
+                continue;
+            {
+                float acc[CAROM_MAX_MANIFOLD_POINTS];
+                for (k = 0; k < c->count; ++k)
+                    acc[k] = c->pts[k].pp;
+                cr_normal_rows(w, c, acc, bias, vn, cr_apply_pseudo, cr_pseudo_vn);
+                for (k = 0; k < c->count; ++k)
+                    c->pts[k].pp = acc[k];
             }
         }
-    }
-    for (i = 0; i < w->body_count; ++i) {
-        cr_body *b = &w->bodies[i];
-        if (b->type != CAROM_BODY_DYNAMIC)
+    /* move along the pseudo-velocities, then forget them */
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        cr_solver_body *sb = &w->sbody[id];
+        cr_body *b = &w->bodies[id];
+        if (!sb->active || b->type != CAROM_BODY_DYNAMIC)
             continue;
-        b->x = cr_vadd(b->x, b->dx);
-        b->q = cr_rot_advance(b->q, b->dtheta);
+        if (!cr_eq(sb->vp.x, 0.0f) || !cr_eq(sb->vp.y, 0.0f))
+            cr_add_position(b, cr_vscale(s->h, sb->vp));
+#if CAROM_ENABLE_ROTATION
+        if (!cr_eq(sb->wp, 0.0f))
+            b->q = cr_rot_advance(b->q, cr_mul(s->h, sb->wp));
+#endif
     }
 }
+
+void cr_solver_set_drifts(carom_world *w, const cr_substep *s)
+{
+    int i;
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        cr_body *b = &w->bodies[id];
+        cr_solver_body *sb = &w->sbody[id];
+        cr_drift *d = &w->drift[id];
+        if (!sb->active)
+            continue;
+        d->a = cr_vscale(s->inv_h, cr_vsub(b->v, sb->v0));
+        d->alpha = cr_mul(s->inv_h, cr_sub(b->w, sb->w0));
+        ++d->version;
+        b->v = sb->v0;
+        b->w = sb->w0;
+    }
+}
+
+void cr_solver_update_deltas(carom_world *w)
+{
+    int i;
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        cr_solver_body *sb = &w->sbody[id];
+        const cr_body *b = &w->bodies[id], *b0 = &w->backup[id];
+        if (!sb->active)
+            continue;
+        sb->dp = cr_vsub(b->x, b0->x);
+        /* q q0^-1 */
+        sb->dq = cr_r(cr_add(cr_mul(b->q.c, b0->q.c), cr_mul(b->q.s, b0->q.s)),
+                      cr_sub(cr_mul(b->q.s, b0->q.c), cr_mul(b->q.c, b0->q.s)));
+    }
+}
+
+int cr_solver_restitution(carom_world *w)
+{
+    int i, k, bounced = 0;
+    for (i = 0; i < w->contact_count; ++i) {
+        cr_contact *c = &w->contacts[i];
+        cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+        float threshold = cr_rest_speed(w, c->a, c->b);
+        float approach = 0.0f, impulse = 0.0f;
+        int hit = 0;
+        for (k = 0; k < c->count; ++k) {
+            cr_contact_point *p = &c->pts[k];
+            float vn, d, pn;
+            /* met faster than the rest speed, and pushed: an impact */
+            if (!cr_lt(p->rel_vn, cr_neg(threshold)) || cr_eq(p->max_pn, 0.0f))
+                continue;
+            hit = 1;
+            approach = cr_max(approach, cr_neg(p->rel_vn));
+            if (cr_gt(c->restitution, 0.0f)) {
+                vn = cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
+                                     cr_point_velocity(A->v, A->w, p->ra)),
+                             c->n);
+                d = cr_neg(cr_mul(p->mass_n, cr_add(vn, cr_mul(c->restitution, p->rel_vn))));
+                pn = cr_max(cr_add(p->pn, d), 0.0f);
+                d = cr_sub(pn, p->pn);
+                p->pn = pn;
+                cr_apply(A, B, cr_normal_lever(w, c->a, p->ra, c->n),
+                         cr_normal_lever(w, c->b, p->rb, c->n), c->n, d);
+                ++bounced;
+            }
+            impulse = cr_add(impulse, p->max_pn);
+        }
+        if (hit)
+            cr_record_impact(w, c->a, c->b, w->def.dt, c->n, impulse, approach);
+    }
+    return bounced;
+}
+
+/* ---- cold start -------------------------------------------------------------- */
+
+/* Up-component of contact c's normal seen from body `lower` to the other. */
+static float cr_lift(const cr_contact *c, int lower, cr_v2 up)
+{
+    float u = cr_vdot(c->n, up);
+    return c->a == lower ? u : cr_neg(u);
+}
+
+/* A contact supports its upper body when its normal is within 60 degrees
+ * of the vertical. */
+#define CR_SUPPORT_COS 0.5f
 
 /*
- * Keep this step's manifolds (and impulses) for warm starting the next, and
- * turn the resting share of each point's impulse (cr_resting_fraction) into
- * the constant contact accelerations the next drift uses: a resting
- * contact's impulse over a step is its force times dt.
+ * Support impulses from the weights (Guendelman et al.'s shock propagation,
+ * used only to start the solver): order the bodies up from those resting on
+ * static bodies along the supporting contacts (breadth first), then walk
+ * that order down: each body hands its weight, plus what it carries, to
+ * the contacts beneath it, shared equally among them and between the two
+ * points of a face by the lever rule. Exact for a column, close for a
+ * pyramid or a pile; the velocity sweeps correct the rest. Contacts that
+ * already have an impulse from the last step keep it.
  */
-void cr_solver_store(carom_world *w)
+void cr_solver_prime(carom_world *w, const cr_substep *s)
 {
-    int i, k;
-    float inv_dt = cr_div(1.0f, w->def.dt);
-    for (i = 0; i < w->body_count; ++i) {
-        w->bodies[i].acc_c = cr_v(0.0f, 0.0f);
-        w->bodies[i].alpha_c = 0.0f;
-    }
-    for (i = 0; i < w->manifold_count; ++i) {
-        cr_manifold *m = &w->manifolds[i];
-        cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
-        cr_v2 t = cr_tangent(m->n);
-        for (k = 0; k < m->count; ++k) {
-            cr_point *p = &m->pts[k];
-            cr_v2 F;
-            float scale, fn, ft;
-            if (cr_eq(p->rest_frac, 0.0f))
-                continue; /* an impact, not a resting force */
-            scale = cr_mul(inv_dt, p->rest_frac);
-            fn = cr_mul(scale, p->pn);
-            ft = cr_mul(scale, p->pt);
-            F = cr_vadd(cr_vscale(fn, m->n), cr_vscale(ft, t));
-            A->acc_c = cr_vmadd(A->acc_c, cr_neg(A->inv_m), F);
-            B->acc_c = cr_vmadd(B->acc_c, B->inv_m, F);
-#if CAROM_ENABLE_ROTATION
-            /* torque: the lever arms times the force components */
-            A->alpha_c = cr_sub(A->alpha_c, cr_mul(A->inv_I, cr_add(cr_mul(p->rna, fn),
-                                                                    cr_mul(p->rta, ft))));
-            B->alpha_c = cr_add(B->alpha_c, cr_mul(B->inv_I, cr_add(cr_mul(p->rnb, fn),
-                                                                    cr_mul(p->rtb, ft))));
-#endif
+    float g = cr_vlen(w->def.gravity);
+    int *queue = w->regrown, *pos = w->mark;
+    int n = 0, head, i, k;
+    cr_v2 up;
+    if (!cr_gt(g, 0.0f))
+        return;
+    up = cr_vscale(cr_div(-1.0f, g), w->def.gravity);
+    for (i = 0; i < w->slot_count; ++i)
+        pos[i] = -1;
+    /* seeds: bodies resting on a static or kinematic body, in slot order */
+    for (i = 0; i < w->contact_count; ++i) {
+        const cr_contact *c = &w->contacts[i];
+        int a = c->a, b = c->b;
+        if (!(c->flags & CR_CONTACT_TOUCHING))
+            continue;
+        if (w->bodies[a].type != CAROM_BODY_DYNAMIC && w->bodies[b].type == CAROM_BODY_DYNAMIC &&
+            pos[b] < 0 && cr_gt(cr_lift(c, a, up), CR_SUPPORT_COS)) {
+            pos[b] = n;
+            queue[n++] = b;
+        } else if (w->bodies[b].type != CAROM_BODY_DYNAMIC &&
+                   w->bodies[a].type == CAROM_BODY_DYNAMIC && pos[a] < 0 &&
+                   cr_gt(cr_lift(c, b, up), CR_SUPPORT_COS)) {
+            pos[a] = n;
+            queue[n++] = a;
         }
     }
-
-    {
-    cr_manifold *t = w->prev_manifolds;
-    w->prev_manifolds = w->manifolds;
-    w->prev_manifold_count = w->manifold_count;
-    w->manifolds = t;
-    w->manifold_count = 0;
+    /* breadth first, up through supporting contacts */
+    for (head = 0; head < n; ++head) {
+        int u = queue[head];
+        for (k = w->pair_head[u]; k >= 0;) {
+            const cr_pair *p = &w->pairs[k];
+            int v = p->a == u ? p->b : p->a, next = p->a == u ? p->next_a : p->next_b;
+            if (p->contact >= 0 && pos[v] < 0 && w->bodies[v].type == CAROM_BODY_DYNAMIC) {
+                const cr_contact *c = &w->contacts[p->contact];
+                if ((c->flags & CR_CONTACT_TOUCHING) && cr_gt(cr_lift(c, u, up), CR_SUPPORT_COS)) {
+                    pos[v] = n;
+                    queue[n++] = v;
+                }
+            }
+            k = next;
+        }
     }
+    for (i = 0; i < n; ++i) {
+        int u = queue[i];
+        w->sbody[u].load = cr_mul(cr_mul(w->info[u].m, g), s->h);
+    }
+    /* down again: every body hands its load to its supports */
+    for (i = n - 1; i >= 0; --i) {
+        int u = queue[i], supports = 0;
+        float share;
+        for (k = w->pair_head[u]; k >= 0;) {
+            const cr_pair *p = &w->pairs[k];
+            int v = p->a == u ? p->b : p->a, next = p->a == u ? p->next_a : p->next_b;
+            if (p->contact >= 0 && (w->bodies[v].type != CAROM_BODY_DYNAMIC || (pos[v] >= 0 && pos[v] < i))) {
+                const cr_contact *c = &w->contacts[p->contact];
+                if ((c->flags & CR_CONTACT_TOUCHING) && cr_gt(cr_lift(c, v, up), CR_SUPPORT_COS))
+                    ++supports;
+            }
+            k = next;
+        }
+        if (supports == 0)
+            continue;
+        share = cr_div(w->sbody[u].load, (float)supports);
+        for (k = w->pair_head[u]; k >= 0;) {
+            const cr_pair *p = &w->pairs[k];
+            int v = p->a == u ? p->b : p->a, next = p->a == u ? p->next_a : p->next_b;
+            if (p->contact >= 0 && (w->bodies[v].type != CAROM_BODY_DYNAMIC || (pos[v] >= 0 && pos[v] < i))) {
+                cr_contact *c = &w->contacts[p->contact];
+                float lift = cr_lift(c, v, up);
+                if ((c->flags & CR_CONTACT_TOUCHING) && cr_gt(lift, CR_SUPPORT_COS)) {
+                    float total = cr_div(share, lift);
+                    int warm = 0, j;
+                    for (j = 0; j < c->count; ++j)
+                        warm |= !cr_eq(c->pts[j].pn, 0.0f);
+                    if (!warm && c->count == 2) {
+                        /* lever rule about u's centre along the face */
+                        cr_v2 t = cr_vright(c->n);
+                        float d1 = cr_vdot(u == c->a ? c->pts[0].ra : c->pts[0].rb, t);
+                        float d2 = cr_vdot(u == c->a ? c->pts[1].ra : c->pts[1].rb, t);
+                        float span = cr_sub(d2, d1);
+                        float f1 = cr_gt(cr_abs(span), 0.0f)
+                                       ? cr_clamp(cr_div(d2, span), 0.0f, 1.0f) : 0.5f;
+                        c->pts[0].pn = cr_mul(total, f1);
+                        c->pts[1].pn = cr_mul(total, cr_sub(1.0f, f1));
+                    } else if (!warm) {
+                        c->pts[0].pn = total;
+                    }
+                    if (w->bodies[v].type == CAROM_BODY_DYNAMIC)
+                        w->sbody[v].load = cr_add(w->sbody[v].load, share);
+                }
+            }
+            k = next;
+        }
+    }
+    /* the stamps of events.c must not meet these positions */
+    for (i = 0; i < w->slot_count; ++i)
+        pos[i] = 0;
+    w->mark_stamp = 0;
 }

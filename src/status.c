@@ -3,35 +3,40 @@
  */
 #include <string.h>
 
-#include "internal.h"
+#include "carom.h"
 
 static const char *const cr_status_names[CAROM_STATUS_COUNT] = {
     "ok",
     "null pointer",
     "not finite (NaN or infinity)",
-    "time step must be > 0",
+    "time step outside [CAROM_LIMIT_MIN_DT, CAROM_LIMIT_MAX_DT]",
     "capacity must be > 0 and fit in memory",
     "buffer too small",
-    "bad parameter (rest speed or slop < 0, or iterations outside 0..1000)",
+    "bad parameter (substeps or iterations outside 1..64, relax 0..64, "
+    "sleep time < 0)",
     "unknown method",
     "bad body type",
     "bad shape type",
-    "radius must be > 0, with an area that fits a float",
+    "radius outside [CAROM_LIMIT_MIN_SIZE, CAROM_LIMIT_MAX_LENGTH]",
     "density must be > 0",
-    "mass must be >= 0 (0: from density), with mass and inertia that fit a float",
+    "mass must be >= 0 (0: from density), with mass and inertia in "
+    "[CAROM_LIMIT_MIN_MASS, CAROM_LIMIT_MAX_MASS]",
     "restitution must be in [0, 1]",
     "friction must be >= 0",
     "rotation must be a non-zero (cos, sin) pair",
     "polygon needs at least 3 vertices",
     "polygon has more than CAROM_MAX_POLYGON_VERTICES vertices",
-    "degenerate polygon (repeated or collinear vertices, or no area)",
+    "degenerate polygon (repeated or collinear vertices, no area, or "
+    "thinner than CAROM_LIMIT_MIN_SIZE)",
     "self-intersecting polygon",
     "polygon is not convex",
     "world is full (max_bodies)",
     "no such body",
-    "more touching pairs than max_pairs",
-    "more impacts in one step than max_events",
+    "more candidate pairs than max_pairs",
+    "more contacts than max_contacts",
     "capability compiled out (see carom_config.h)",
+    "value outside carom's range (carom_config.h CAROM_LIMIT_*)",
+    "stale body id (that body was removed)",
 };
 
 const char *carom_status_string(carom_status status)

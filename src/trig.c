@@ -5,7 +5,7 @@
  * not: with IEEE single precision, round-to-nearest and no contraction,
  * every platform computes the same bits.
  */
-#include "internal.h"
+#include "arith.h"
 
 /* pi/2 split in three floats (Cody-Waite): P1 has 8 significant bits and
  * P2 12, so k * P1 and k * P2 are exact for the quadrant counts k < 2^12

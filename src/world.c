@@ -1,18 +1,32 @@
 /*
- * world.c -- world life cycle in caller memory, bodies, and the step.
+ * world.c -- the world's life in caller memory, its bodies, and the step.
  *
  * Memory: one caller buffer holds the world header and every array, each
  * aligned to CR_ALIGN; carom_world_buffer_size() and carom_world_init() use
  * the same layout function, so they cannot disagree.
  */
-#include "internal.h"
+#include "world.h"
+
+#include "events.h"
+#include "island.h"
+#include "solver.h"
+#include "toi.h"
 
 #define CR_ALIGN 16u
-#define CR_MAX_CAPACITY (1 << 24)
-#define CR_MAX_ITERATIONS 1000
-/* Sweeps of the priming solve: it runs cold (nothing to warm-start from)
- * and only when bodies were added, so it can afford to converge. */
-#define CR_PRIME_ITERATIONS 100
+#define CR_MAX_BODIES (1 << CAROM_ID_INDEX_BITS)
+#define CR_INDEX_MASK ((unsigned)CR_MAX_BODIES - 1u)
+/* Pairs, contacts and events: at most this many (fits every index). */
+#define CR_MAX_CAPACITY (1 << 26)
+#define CR_MAX_SUBSTEPS 64
+#define CR_MAX_ITERATIONS 64
+/* Heap slack over the pair capacity (a pair has at most one live entry). */
+#define CR_HEAP_SLACK 64
+/* Velocity sweeps of the first substep after bodies were added: nothing
+ * to warm-start from, so the support of a stack must be found from zero
+ * (a 40-box column needs a few hundred sweeps; they run once). */
+#define CR_PRIME_ITERATIONS 256
+/* Contact rows per body of a simultaneous impact solve. */
+#define CR_ROWS_PER_ISLAND_BODY 4
 
 /* ---- definitions ---------------------------------------------------------- */
 
@@ -28,11 +42,17 @@ carom_world_def carom_default_world_def(void)
 #endif
     d.max_bodies = CAROM_DEFAULT_MAX_BODIES;
     d.max_pairs = 0;
-    d.max_events = 0; /* CAROM_DEFAULT_EVENTS_PER_BODY per body */
-    d.rest_speed = CAROM_DEFAULT_REST_SPEED;
-    d.linear_slop = CAROM_DEFAULT_LINEAR_SLOP;
-    d.velocity_iterations = CAROM_DEFAULT_VELOCITY_ITERATIONS;
-    d.position_iterations = CAROM_DEFAULT_POSITION_ITERATIONS;
+    d.max_contacts = 0;
+    d.max_events = 0;
+    d.max_impacts = 0;
+    d.length_unit = CAROM_AUTO;
+    d.rest_speed = CAROM_AUTO;
+    d.linear_slop = CAROM_AUTO;
+    d.substeps = CAROM_DEFAULT_SUBSTEPS;
+    d.iterations = CAROM_DEFAULT_ITERATIONS;
+    d.relax_iterations = CAROM_DEFAULT_RELAX_ITERATIONS;
+    d.enable_sleep = 1;
+    d.sleep_time = CAROM_DEFAULT_SLEEP_TIME;
     d.force_fn = 0;
     d.force_user = 0;
     return d;
@@ -55,19 +75,29 @@ carom_status carom_world_def_validate(const carom_world_def *d)
         return CAROM_ERR_NULL;
     if (!cr_finite(d->gravity.x) || !cr_finite(d->gravity.y) ||
         !cr_finite(d->dt) || !cr_finite(d->rest_speed) ||
-        !cr_finite(d->linear_slop))
+        !cr_finite(d->linear_slop) || !cr_finite(d->length_unit) ||
+        !cr_finite(d->sleep_time))
         return CAROM_ERR_NOT_FINITE;
-    if (!cr_gt(d->dt, 0.0f))
+    if (!cr_ge(d->dt, CAROM_LIMIT_MIN_DT) || !cr_le(d->dt, CAROM_LIMIT_MAX_DT))
         return CAROM_ERR_BAD_DT;
-    if (d->max_bodies <= 0 || d->max_bodies > CR_MAX_CAPACITY ||
+    if (!cr_v2_within(d->gravity, CAROM_LIMIT_MAX_ACCEL))
+        return CAROM_ERR_OUT_OF_RANGE;
+    if (d->max_bodies <= 0 || d->max_bodies > CR_MAX_BODIES ||
         d->max_pairs < 0 || d->max_pairs > CR_MAX_CAPACITY ||
-        d->max_events < 0 || d->max_events > CR_MAX_CAPACITY)
+        d->max_contacts < 0 || d->max_contacts > CR_MAX_CAPACITY ||
+        d->max_events < 0 || d->max_events > CR_MAX_CAPACITY ||
+        d->max_impacts < 0)
         return CAROM_ERR_BAD_CAPACITY;
-    if (cr_lt(d->rest_speed, 0.0f) || cr_lt(d->linear_slop, 0.0f) ||
-        d->velocity_iterations < 0 || d->position_iterations < 0 ||
-        d->velocity_iterations > CR_MAX_ITERATIONS ||
-        d->position_iterations > CR_MAX_ITERATIONS)
+    if (d->substeps < 1 || d->substeps > CR_MAX_SUBSTEPS || d->iterations < 1 ||
+        d->iterations > CR_MAX_ITERATIONS || d->relax_iterations < 0 ||
+        d->relax_iterations > CR_MAX_ITERATIONS || cr_lt(d->sleep_time, 0.0f))
         return CAROM_ERR_BAD_PARAMETER;
+    /* lengths and speeds: CAROM_AUTO (negative) or within the limits */
+    if (cr_gt(d->length_unit, CAROM_LIMIT_MAX_LENGTH) ||
+        cr_gt(d->linear_slop, CAROM_LIMIT_MAX_LENGTH) ||
+        cr_gt(d->rest_speed, CAROM_LIMIT_MAX_SPEED) ||
+        (cr_ge(d->length_unit, 0.0f) && cr_lt(d->length_unit, CAROM_LIMIT_MIN_SIZE)))
+        return CAROM_ERR_OUT_OF_RANGE;
 #if !CAROM_ENABLE_FORCES
     if (d->force_fn)
         return CAROM_ERR_DISABLED;
@@ -77,47 +107,84 @@ carom_status carom_world_def_validate(const carom_world_def *d)
 
 /* ---- memory layout ------------------------------------------------------------ */
 
+typedef struct cr_caps {
+    int bodies, pairs, contacts, events, impacts, heap, island, rows, buckets;
+} cr_caps;
+
+static void cr_caps_of(const carom_world_def *d, cr_caps *c)
+{
+    int b = d->max_bodies;
+    c->bodies = b;
+    c->pairs = d->max_pairs > 0 ? d->max_pairs : CAROM_DEFAULT_PAIRS_PER_BODY * b;
+    c->contacts = d->max_contacts > 0 ? d->max_contacts
+                                      : CAROM_DEFAULT_CONTACTS_PER_BODY * b;
+    c->events = d->max_events > 0 ? d->max_events
+                                  : (CAROM_DEFAULT_EVENTS_PER_BODY * b > CAROM_MIN_EVENTS
+                                         ? CAROM_DEFAULT_EVENTS_PER_BODY * b
+                                         : CAROM_MIN_EVENTS);
+    c->impacts = d->max_impacts > 0
+                     ? d->max_impacts
+                     : ((long)CAROM_DEFAULT_IMPACTS_PER_BODY * b > CAROM_MIN_IMPACTS
+                            ? CAROM_DEFAULT_IMPACTS_PER_BODY * b
+                            : CAROM_MIN_IMPACTS);
+    c->heap = c->pairs + CR_HEAP_SLACK;
+    c->island = b < CAROM_IMPACT_ISLAND_MAX_BODIES ? b : CAROM_IMPACT_ISLAND_MAX_BODIES;
+    c->rows = CR_ROWS_PER_ISLAND_BODY * c->island;
+    c->buckets = cr_broadphase_bucket_cap(b);
+}
+
 typedef struct cr_layout {
-    size_t world, bodies, proxies, proxy_tmp, pairs, pair_tmp, pair_toi, manifolds,
-        prev_manifolds, events, total;
+    size_t world, bodies, backup, info, boxes, awake, sbody, drift, mark, island,
+        island_v, island_w, regrown, pair_head, proxies, ptmp, start, count,
+        pairs, pair_tmp, contacts, solve_order, warm, warm_next, heap, rows, events,
+        total;
 } cr_layout;
 
 static size_t cr_round_up(size_t n) { return (n + CR_ALIGN - 1u) & ~(size_t)(CR_ALIGN - 1u); }
 
-static int cr_event_capacity(const carom_world_def *d)
+/* Offsets of every array; every count is below 2^27 and every element
+ * below 2^10 bytes, so on a 64-bit size_t nothing overflows; on 32-bit
+ * targets the running total is checked. */
+static int cr_layout_of(const cr_caps *c, cr_layout *l)
 {
-    int n = CAROM_DEFAULT_EVENTS_PER_BODY * d->max_bodies;
-    if (d->max_events > 0)
-        return d->max_events;
-    return n > CAROM_MIN_EVENTS ? n : CAROM_MIN_EVENTS;
-}
-
-static int cr_pair_capacity(const carom_world_def *d)
-{
-    return d->max_pairs > 0 ? d->max_pairs
-                            : CAROM_DEFAULT_PAIRS_PER_BODY * d->max_bodies;
-}
-
-/* Offsets of every array; capacities are <= 2^24 so nothing overflows a
- * 64-bit size_t, and on 32-bit targets the sizes are checked below. */
-static int cr_layout_of(const carom_world_def *d, cr_layout *l)
-{
-    size_t nb = (size_t)d->max_bodies, np = (size_t)cr_pair_capacity(d);
-    size_t ne = (size_t)cr_event_capacity(d), at = 0;
+    size_t at = 0;
     const size_t limit = (size_t)-1 / 4u;
-    if (np > limit / sizeof(cr_manifold) || nb > limit / sizeof(cr_body) ||
-        ne > limit / sizeof(carom_event))
-        return 0;
-    l->world = at; at += cr_round_up(sizeof(carom_world));
-    l->bodies = at; at += cr_round_up(nb * sizeof(cr_body));
-    l->proxies = at; at += cr_round_up(nb * sizeof(cr_proxy));
-    l->proxy_tmp = at; at += cr_round_up(nb * sizeof(cr_proxy));
-    l->pairs = at; at += cr_round_up(np * sizeof(cr_pair));
-    l->pair_tmp = at; at += cr_round_up(np * sizeof(cr_pair));
-    l->pair_toi = at; at += cr_round_up(np * sizeof(float));
-    l->manifolds = at; at += cr_round_up(np * sizeof(cr_manifold));
-    l->prev_manifolds = at; at += cr_round_up(np * sizeof(cr_manifold));
-    l->events = at; at += cr_round_up(ne * sizeof(carom_event));
+#define CR_PLACE(field, count, type)                                           \
+    do {                                                                       \
+        size_t n_ = (size_t)(count);                                           \
+        if (n_ > (limit - at) / sizeof(type))                                  \
+            return 0;                                                          \
+        l->field = at;                                                         \
+        at += cr_round_up(n_ * sizeof(type));                                  \
+    } while (0)
+    CR_PLACE(world, 1, carom_world);
+    CR_PLACE(bodies, c->bodies, cr_body);
+    CR_PLACE(backup, c->bodies, cr_body);
+    CR_PLACE(info, c->bodies, cr_body_info);
+    CR_PLACE(boxes, c->bodies, cr_box);
+    CR_PLACE(awake, c->bodies, int);
+    CR_PLACE(sbody, c->bodies, cr_solver_body);
+    CR_PLACE(drift, c->bodies, cr_drift);
+    CR_PLACE(mark, c->bodies, int);
+    CR_PLACE(island, c->island, int);
+    CR_PLACE(island_v, c->island, cr_v2);
+    CR_PLACE(island_w, c->island, float);
+    CR_PLACE(regrown, c->bodies, int);
+    CR_PLACE(pair_head, c->bodies, int);
+    CR_PLACE(proxies, c->bodies, cr_proxy);
+    CR_PLACE(ptmp, c->bodies, cr_proxy);
+    CR_PLACE(start, c->buckets + 1, int);
+    CR_PLACE(count, c->bodies + 1, int);
+    CR_PLACE(pairs, c->pairs, cr_pair);
+    CR_PLACE(pair_tmp, c->pairs, cr_pair);
+    CR_PLACE(contacts, c->contacts, cr_contact);
+    CR_PLACE(solve_order, c->contacts, int);
+    CR_PLACE(warm, c->contacts, cr_warm);
+    CR_PLACE(warm_next, c->contacts, cr_warm);
+    CR_PLACE(heap, c->heap, cr_heap_entry);
+    CR_PLACE(rows, c->rows, cr_impact_row);
+    CR_PLACE(events, c->events, carom_event);
+#undef CR_PLACE
     if (at > limit)
         return 0;
     l->total = at + CR_ALIGN; /* slack to align any caller buffer */
@@ -126,13 +193,12 @@ static int cr_layout_of(const carom_world_def *d, cr_layout *l)
 
 size_t carom_world_buffer_size(const carom_world_def *def)
 {
+    cr_caps c;
     cr_layout l;
-    carom_status st = carom_world_def_validate(def);
-    if (st != CAROM_OK && st != CAROM_ERR_DISABLED)
+    if (carom_world_def_validate(def) != CAROM_OK)
         return 0;
-    if (st == CAROM_ERR_DISABLED)
-        return 0;
-    if (!cr_layout_of(def, &l))
+    cr_caps_of(def, &c);
+    if (!cr_layout_of(&c, &l))
         return 0;
     return l.total;
 }
@@ -140,18 +206,21 @@ size_t carom_world_buffer_size(const carom_world_def *def)
 carom_status carom_world_init(carom_world **out, const carom_world_def *def,
                               void *buffer, size_t bytes)
 {
+    cr_caps c;
     cr_layout l;
     unsigned char *base;
     carom_world *w;
     carom_status st;
     size_t pad;
+    int i;
 
     if (!out || !def || !buffer)
         return CAROM_ERR_NULL;
     st = carom_world_def_validate(def);
     if (st != CAROM_OK)
         return st;
-    if (!cr_layout_of(def, &l))
+    cr_caps_of(def, &c);
+    if (!cr_layout_of(&c, &l))
         return CAROM_ERR_BAD_CAPACITY;
     if (bytes < l.total)
         return CAROM_ERR_BUFFER_TOO_SMALL;
@@ -159,34 +228,121 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     pad = (CR_ALIGN - ((size_t)buffer & (CR_ALIGN - 1u))) & (CR_ALIGN - 1u);
     base = (unsigned char *)buffer + pad;
     w = (carom_world *)(void *)(base + l.world);
+#define CR_AT(field, type) ((type *)(void *)(base + l.field))
     w->def = *def;
-    w->def.max_pairs = cr_pair_capacity(def);
-    w->def.max_events = cr_event_capacity(def);
+    w->def.max_pairs = c.pairs;
+    w->def.max_contacts = c.contacts;
+    w->def.max_events = c.events;
+    w->def.max_impacts = c.impacts;
     w->method = def->method;
     w->steps = 0;
-    w->bodies = (cr_body *)(void *)(base + l.bodies);
+    w->bodies = CR_AT(bodies, cr_body);
+    w->backup = CR_AT(backup, cr_body);
+    w->info = CR_AT(info, cr_body_info);
+    w->slot_count = 0;
     w->body_count = 0;
-    w->proxies = (cr_proxy *)(void *)(base + l.proxies);
-    w->proxy_tmp = (cr_proxy *)(void *)(base + l.proxy_tmp);
-    w->pairs = (cr_pair *)(void *)(base + l.pairs);
-    w->pair_tmp = (cr_pair *)(void *)(base + l.pair_tmp);
-    w->pair_toi = (float *)(void *)(base + l.pair_toi);
+    w->prime = 0;
+    w->awake = CR_AT(awake, int);
+    w->awake_count = 0;
+    w->boxes = CR_AT(boxes, cr_box);
+    w->bp.proxies = CR_AT(proxies, cr_proxy);
+    w->bp.tmp = CR_AT(ptmp, cr_proxy);
+    w->bp.start = CR_AT(start, int);
+    w->bp.count = CR_AT(count, int);
+    w->bp.capacity = c.bodies;
+    w->bp.bucket_cap = c.buckets;
+    w->bp.grid_count = w->bp.big_count = 0;
+    w->bp.buckets = 1;
+    w->bp.cell = w->bp.inv_cell = 1.0f;
+    w->pairs = CR_AT(pairs, cr_pair);
+    w->pair_tmp = CR_AT(pair_tmp, cr_pair);
     w->pair_count = 0;
-    w->pairs_dropped = 0;
-    w->toi_queries = 0;
-    w->toi_early_outs = 0;
-    w->impacts_total = 0;
-    w->manifolds = (cr_manifold *)(void *)(base + l.manifolds);
-    w->prev_manifolds = (cr_manifold *)(void *)(base + l.prev_manifolds);
-    w->manifold_count = 0;
-    w->prev_manifold_count = 0;
-    w->needs_prime = 1;
-    w->profile = 0;
-    w->events = (carom_event *)(void *)(base + l.events);
+    w->pair_head = CR_AT(pair_head, int);
+    w->contacts = CR_AT(contacts, cr_contact);
+    w->contact_count = 0;
+    w->warm = CR_AT(warm, cr_warm);
+    w->warm_next = CR_AT(warm_next, cr_warm);
+    w->warm_count = w->warm_next_count = 0;
+    w->sbody = CR_AT(sbody, cr_solver_body);
+    w->solve_order = CR_AT(solve_order, int);
+    w->solve_count = 0;
+    w->drift = CR_AT(drift, cr_drift);
+    w->heap = CR_AT(heap, cr_heap_entry);
+    w->heap_count = 0;
+    w->heap_cap = c.heap;
+    w->mark = CR_AT(mark, int);
+    w->mark_stamp = 0;
+    w->island = CR_AT(island, int);
+    w->island_v = CR_AT(island_v, cr_v2);
+    w->island_w = CR_AT(island_w, float);
+    w->island_cap = c.island;
+    w->regrown = CR_AT(regrown, int);
+    w->regrown_count = 0;
+    w->rows = CR_AT(rows, cr_impact_row);
+    w->row_cap = c.rows;
+    w->impacts_this_step = 0;
+    w->budget_hit = 0;
+    w->events = CR_AT(events, carom_event);
     w->event_count = 0;
     w->events_dropped = 0;
+    w->error_body = -1;
+    w->profile = 0;
+#undef CR_AT
+    for (i = 0; i < c.bodies; ++i) {
+        w->mark[i] = 0;
+        w->drift[i].version = 0;
+        w->drift[i].t = 0.0f;
+        w->drift[i].a = cr_v(0.0f, 0.0f);
+        w->drift[i].alpha = 0.0f;
+    }
+    {
+        carom_stats z = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        w->stats = z;
+    }
     *out = w;
     return CAROM_OK;
+}
+
+/* ---- ids ---------------------------------------------------------------------- */
+
+int cr_body_id(const carom_world *w, int slot)
+{
+    unsigned gen = w->info[slot].generation;
+    return (int)(((gen & ((1u << (31 - CAROM_ID_INDEX_BITS)) - 1u)) << CAROM_ID_INDEX_BITS) |
+                 (unsigned)slot);
+}
+
+/* The slot an id names, or a status. */
+static carom_status cr_slot_of(const carom_world *w, int id, int *slot)
+{
+    unsigned u = (unsigned)id, s = u & CR_INDEX_MASK;
+    if (id < 0 || (int)s >= w->slot_count)
+        return CAROM_ERR_BAD_BODY_ID;
+    if (!(w->bodies[s].flags & CR_BODY_ALIVE) || cr_body_id(w, (int)s) != id)
+        return (w->bodies[s].flags & CR_BODY_ALIVE) || w->info[s].generation > 0
+                   ? CAROM_ERR_STALE_ID
+                   : CAROM_ERR_BAD_BODY_ID;
+    *slot = (int)s;
+    return CAROM_OK;
+}
+
+void cr_record_impact(carom_world *w, int a, int b, float t, cr_v2 n,
+                      float impulse, float approach)
+{
+    carom_event *e;
+    ++w->stats.impacts;
+    ++w->impacts_this_step;
+    if (w->event_count >= w->def.max_events) {
+        ++w->events_dropped;
+        return;
+    }
+    e = &w->events[w->event_count++];
+    e->t = cr_add(cr_mul((float)w->steps, w->def.dt), t);
+    e->body_a = cr_body_id(w, a);
+    e->body_b = cr_body_id(w, b);
+    e->normal = n;
+    e->impulse = impulse;
+    e->approach_speed = approach;
 }
 
 /* ---- bodies ------------------------------------------------------------------- */
@@ -195,21 +351,29 @@ carom_status carom_world_add_body(carom_world *w, const carom_body_def *def,
                                   int *id)
 {
     cr_body b;
+    cr_body_info info;
     carom_status st;
+    int slot;
     if (!w || !def)
         return CAROM_ERR_NULL;
-    st = cr_body_build(def, &b);
+    st = cr_body_build(def, &b, &info);
     if (st != CAROM_OK)
         return st;
-    if (w->body_count >= w->def.max_bodies)
+    if (w->slot_count >= w->def.max_bodies)
         return CAROM_ERR_WORLD_FULL;
-    if (b.type == CAROM_BODY_DYNAMIC)
-        cr_body_forces(w, w->body_count, &b, &b.acc, &b.alpha);
-    w->bodies[w->body_count] = b;
-    if (id)
-        *id = w->body_count;
+    slot = w->slot_count;
+    st = cr_body_accel(&w->def, slot, &b, &info, &b.a, &b.alpha);
+    if (st != CAROM_OK)
+        return st;
+    info.generation = 0u;
+    w->bodies[slot] = b;
+    w->info[slot] = info;
+    w->drift[slot].version = 0;
+    ++w->slot_count;
     ++w->body_count;
-    w->needs_prime = 1;
+    w->prime = 1;
+    if (id)
+        *id = cr_body_id(w, slot);
     return CAROM_OK;
 }
 
@@ -222,15 +386,18 @@ carom_status carom_body_get_state(const carom_world *w, int id,
                                   carom_body_state *out)
 {
     const cr_body *b;
+    carom_status st;
+    int s;
     if (!w || !out)
         return CAROM_ERR_NULL;
-    if (id < 0 || id >= w->body_count)
-        return CAROM_ERR_BAD_BODY_ID;
-    b = &w->bodies[id];
+    st = cr_slot_of(w, id, &s);
+    if (st != CAROM_OK)
+        return st;
+    b = &w->bodies[s];
     out->center = b->x;
-    out->position = cr_body_origin(b);
+    out->position = cr_body_origin(b, &w->info[s]);
     out->rotation = b->q;
-    out->velocity = b->vel;
+    out->velocity = b->v;
     out->angular_velocity = b->w;
     return CAROM_OK;
 }
@@ -238,42 +405,69 @@ carom_status carom_body_get_state(const carom_world *w, int id,
 carom_status carom_body_get_mass(const carom_world *w, int id, float *mass,
                                  float *inertia)
 {
+    carom_status st;
+    int s;
     if (!w)
         return CAROM_ERR_NULL;
-    if (id < 0 || id >= w->body_count)
-        return CAROM_ERR_BAD_BODY_ID;
+    st = cr_slot_of(w, id, &s);
+    if (st != CAROM_OK)
+        return st;
     if (mass)
-        *mass = w->bodies[id].m;
+        *mass = w->info[s].m;
     if (inertia)
-        *inertia = w->bodies[id].I;
+        *inertia = w->info[s].I;
     return CAROM_OK;
 }
 
 carom_status carom_body_set_force(carom_world *w, int id, carom_vec2 force,
                                   float torque)
 {
-    cr_body *b;
+    carom_status st;
+    int s;
     if (!w)
         return CAROM_ERR_NULL;
 #if CAROM_ENABLE_FORCES
-    if (id < 0 || id >= w->body_count)
-        return CAROM_ERR_BAD_BODY_ID;
+    st = cr_slot_of(w, id, &s);
+    if (st != CAROM_OK)
+        return st;
     if (!cr_finite(force.x) || !cr_finite(force.y) || !cr_finite(torque))
         return CAROM_ERR_NOT_FINITE;
-    b = &w->bodies[id];
-    b->force = force;
-    b->torque = torque;
-    /* a0 of the next step is the acceleration at the current state */
-    if (b->type == CAROM_BODY_DYNAMIC)
-        cr_body_forces(w, id, b, &b->acc, &b->alpha);
+    if (!cr_accel_in_range(&w->info[s], force, torque))
+        return CAROM_ERR_OUT_OF_RANGE;
+    {
+        cr_body_info saved = w->info[s];
+        cr_body *b = &w->bodies[s];
+        cr_v2 a;
+        float alpha;
+        w->info[s].force = force;
+        w->info[s].torque = torque;
+        /* a0 of the next step is the acceleration at the current state */
+        st = cr_body_accel(&w->def, s, b, &w->info[s], &a, &alpha);
+        if (st != CAROM_OK) {
+            w->info[s] = saved;
+            return st;
+        }
+        b->a = a;
+        b->alpha = alpha;
+        cr_island_wake(w, s);
+    }
     return CAROM_OK;
 #else
     (void)id;
     (void)force;
     (void)torque;
-    (void)b;
+    (void)st;
+    (void)s;
     return CAROM_ERR_DISABLED;
 #endif
+}
+
+int carom_body_is_awake(const carom_world *w, int id)
+{
+    int s;
+    if (!w || cr_slot_of(w, id, &s) != CAROM_OK)
+        return 0;
+    return (w->bodies[s].flags & CR_BODY_AWAKE) ? 1 : 0;
 }
 
 /* ---- method ------------------------------------------------------------------ */
@@ -296,218 +490,330 @@ carom_method carom_world_get_method(const carom_world *w)
 
 /* ---- the step ------------------------------------------------------------------ */
 
-/*
- * Events methods: a contact that was approaching faster than rest_speed
- * before this step's force kick and still is at its end is an impact (one
- * whose instant fell at the step boundary, or one the event cap left
- * over). A slow arrival (slower than rest_speed at contact, so not an
- * event) that the kick pushed past rest_speed by the end of the step is a
- * landing, for the solver. The end-of-step solver leaves
- * it alone; the next step's event loop finds the pair touching and
- * approaching and takes the impact at its start, in time order with the
- * others. The approach is judged with the resting forces applied
- * (cr_effective_approach): the |g| dt a resting body "approaches" its
- * support by at the end of a step is a resting force's to cancel, not an
- * impact to defer, however large dt is.
- */
-static void cr_defer_impacts(carom_world *w)
+/* The tolerances of this step (carom_config.h: scale). */
+static void cr_scale_compute(const carom_world *w, cr_scale *s)
 {
-    int i, k, kept = 0;
-    for (i = 0; i < w->manifold_count; ++i) {
-        cr_manifold *m = &w->manifolds[i];
-        const cr_body *A = &w->bodies[m->a], *B = &w->bodies[m->b];
-        int impact = 0;
-        for (k = 0; k < m->count; ++k) {
-            cr_v2 ra = cr_vsub(m->pts[k].p, A->x), rb = cr_vsub(m->pts[k].p, B->x);
-            /* approach before this step's kick (start of step, or just
-             * after the bodies' last impact) */
-            cr_v2 vb = cr_vadd(B->vel_saved, cr_vcross_sv(B->w_saved, rb));
-            cr_v2 va = cr_vadd(A->vel_saved, cr_vcross_sv(A->w_saved, ra));
-            float before = cr_neg(cr_vdot(cr_vsub(vb, va), m->n));
-            float threshold = cr_impact_threshold(A, B, w->def.rest_speed);
-            impact |= cr_gt(before, threshold) &&
-                      cr_gt(cr_effective_approach(A, B, ra, rb, m->n, w->def.dt),
-                            threshold);
-        }
-        if (!impact)
-            w->manifolds[kept++] = *m;
-    }
-    w->manifold_count = kept;
-}
-
-static void cr_find_contacts(carom_world *w)
-{
-    int i;
-    w->manifold_count = 0;
-    for (i = 0; i < w->pair_count; ++i) {
-        cr_manifold *m = &w->manifolds[w->manifold_count];
-        int a = w->pairs[i].a, b = w->pairs[i].b;
-        if (cr_collide(&w->bodies[a], &w->bodies[b], w->def.linear_slop, m)) {
-            m->a = a;
-            m->b = b;
-            ++w->manifold_count;
-        }
-    }
-}
-
-/* Record each manifold hit faster than rest_speed as an impact at time t. */
-static void cr_record_impacts(carom_world *w, float t)
-{
-    int i, k;
-    for (i = 0; i < w->manifold_count; ++i) {
-        const cr_manifold *m = &w->manifolds[i];
-        float approach = 0.0f, impulse = 0.0f;
-        carom_event *e;
-        for (k = 0; k < m->count; ++k) {
-            approach = cr_max(approach, m->pts[k].approach);
-            impulse = cr_add(impulse, m->pts[k].pn);
-        }
-        if (!cr_gt(approach, w->def.rest_speed))
+    float sum = 0.0f, all = 0.0f;
+    int i, n = 0, m = 0;
+    for (i = 0; i < w->slot_count; ++i) {
+        const cr_body *b = &w->bodies[i];
+        if (!(b->flags & CR_BODY_ALIVE))
             continue;
-        if (w->event_count >= w->def.max_events) {
-            ++w->events_dropped;
-            continue;
-        }
-        e = &w->events[w->event_count++];
-        e->t = t;
-        e->body_a = m->a;
-        e->body_b = m->b;
-        e->normal = m->n;
-        e->impulse = impulse;
-        e->approach_speed = approach;
-    }
-}
-
-/*
- * Priming: the forces of the contacts that already touch. The drift of a
- * step includes last step's resting contact forces (integrate.c); before
- * the first step there is no last step, so a stack placed at rest would
- * sink |g| dt^2 / 2 per contact in step 1. This solves, without moving
- * anything, the non-penetration impulses for the velocities a free step
- * would produce (v0 + a0 dt) and keeps them as if a step had found them.
- */
-static void cr_prime(carom_world *w)
-{
-    int i;
-    float dt = w->def.dt;
-    for (i = 0; i < w->body_count; ++i) {
-        cr_body *b = &w->bodies[i];
-        b->vel_saved = b->vel;
-        b->w_saved = b->w;
+        all = cr_add(all, w->info[i].shape.half_width);
+        ++m;
         if (b->type == CAROM_BODY_DYNAMIC) {
-            b->vel = cr_vmadd(b->vel, dt, b->acc);
-            b->w = cr_add(b->w, cr_mul(dt, b->alpha));
+            sum = cr_add(sum, w->info[i].shape.half_width);
+            ++n;
         }
     }
-    cr_broadphase(w, w->def.linear_slop);
-    cr_find_contacts(w);
-    cr_solver_prepare(w, 1);
-    cr_solver_velocities(w, CR_PRIME_ITERATIONS);
-    cr_solver_store(w);
-    for (i = 0; i < w->body_count; ++i) {
-        w->bodies[i].vel = w->bodies[i].vel_saved;
-        w->bodies[i].w = w->bodies[i].w_saved;
-    }
-    w->needs_prime = 0;
+    if (cr_gt(w->def.length_unit, 0.0f))
+        s->length = w->def.length_unit;
+    else if (n > 0)
+        s->length = cr_div(sum, (float)n);
+    else if (m > 0)
+        s->length = cr_div(all, (float)m);
+    else
+        s->length = 1.0f;
+    s->slop = cr_ge(w->def.linear_slop, 0.0f) ? w->def.linear_slop
+                                              : cr_mul(CAROM_SLOP_PER_LENGTH, s->length);
+    s->spec = cr_mul(CAROM_SPECULATIVE_SLOPS, s->slop);
+    s->push = cr_mul(CAROM_PUSH_SPEED_PER_LENGTH, s->length);
+    s->face_tol = cr_mul(CAROM_FACE_TOL_PER_SLOP, s->slop);
+    s->sleep_speed = cr_mul(CAROM_SLEEP_SPEED_PER_LENGTH, s->length);
 }
 
-/*
- * Contacts where the bodies are now: find them, solve impulses (restitution
- * for impacts, resting forces otherwise), record impacts at time t, remove
- * overlap, keep the impulses for the next step. The whole collision work of
- * the discrete method; the resting-contact stage of the events methods.
- */
-static carom_status cr_resolve_contacts(carom_world *w, float t,
-                                        int defer_impacts)
+/* Bodies pair unless neither can move (static, or asleep). */
+static int cr_accept_pair(void *ctx, int a, int b)
 {
+    const carom_world *w = (const carom_world *)ctx;
+    const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
+    int ma = A->type != CAROM_BODY_STATIC && (A->flags & CR_BODY_AWAKE);
+    int mb = B->type != CAROM_BODY_STATIC && (B->flags & CR_BODY_AWAKE);
+    return ma || mb;
+}
+
+/* Candidate pairs from every body's box over the step. */
+static carom_status cr_find_pairs(carom_world *w)
+{
+    int i, n = 0;
+    long found;
     CR_PHASE(w, CAROM_PHASE_BROADPHASE);
-    cr_broadphase(w, w->def.linear_slop);
-    CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
-    cr_find_contacts(w);
-    if (defer_impacts)
-        cr_defer_impacts(w);
-    /* with impacts deferred (events methods) what is left is resting */
-    CR_PHASE(w, defer_impacts ? CAROM_PHASE_RESTING : CAROM_PHASE_IMPULSES);
-    cr_solver_prepare(w, 0);
-    cr_solver_velocities(w, w->def.velocity_iterations);
-    cr_record_impacts(w, t);
-    CR_PHASE(w, CAROM_PHASE_RESTING);
-    cr_solver_positions(w);
-    cr_solver_store(w);
-    return w->pairs_dropped > 0 ? CAROM_ERR_PAIR_CAPACITY : CAROM_OK;
+    for (i = 0; i < w->slot_count; ++i) {
+        cr_mover m;
+        if (!(w->bodies[i].flags & CR_BODY_ALIVE))
+            continue;
+        m.s = &w->info[i].shape;
+        m.b = &w->bodies[i];
+        m.d = &w->drift[i];
+        if (w->bodies[i].flags & CR_BODY_AWAKE)
+            cr_swept_box(&m, 0.0f, w->def.dt, w->scale.spec, &w->boxes[i]);
+        else {
+            cr_box *b = &w->boxes[i];
+            cr_shape_box(m.s, m.b->x, m.b->q, b);
+            b->lo_x = cr_sub(b->lo_x, w->scale.spec);
+            b->lo_y = cr_sub(b->lo_y, w->scale.spec);
+            b->hi_x = cr_add(b->hi_x, w->scale.spec);
+            b->hi_y = cr_add(b->hi_y, w->scale.spec);
+        }
+        w->regrown[n++] = i; /* scratch: the list of bodies in the grid */
+    }
+    cr_broadphase_build(&w->bp, w->boxes, w->regrown, n);
+    found = cr_broadphase_pairs(&w->bp, w->boxes, cr_accept_pair, w, w->pairs,
+                                w->def.max_pairs);
+    if (found > (long)w->def.max_pairs) {
+        w->pair_count = 0;
+        return CAROM_ERR_PAIR_CAPACITY;
+    }
+    w->pair_count = (int)found;
+    cr_pairs_sort(w->pairs, w->pair_tmp, w->pair_count, w->bp.count, w->slot_count);
+    cr_pairs_link(w);
+    return CAROM_OK;
+}
+
+/* Sync the bodies the solver takes this substep to its start. */
+static void cr_sync_active(carom_world *w, float t)
+{
+    int i;
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        if (w->sbody[id].active)
+            cr_sync(&w->bodies[id], &w->drift[id], t);
+    }
+}
+
+/* After the relax at the end of a substep: bodies the solver moved leave
+ * it at t with their relaxed velocity and their forces' drift. */
+static void cr_release_active(carom_world *w, float t)
+{
+    int i;
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        const cr_body *b = &w->bodies[id];
+        cr_drift *d = &w->drift[id];
+        if (!w->sbody[id].active)
+            continue;
+        d->t = t;
+        d->a = b->type == CAROM_BODY_DYNAMIC ? b->a : cr_v(0.0f, 0.0f);
+        d->alpha = b->type == CAROM_BODY_DYNAMIC ? b->alpha : 0.0f;
+        ++d->version;
+    }
+}
+
+/* Velocity Verlet's finish: forces at the new positions, v1 = v(dt) +
+ * (a1 - a0) dt / 2 (v(dt) already holds a0 dt). */
+static carom_status cr_finish_velocities(carom_world *w)
+{
+    float half = cr_mul(0.5f, w->def.dt);
+    int i;
+    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        cr_body *b = &w->bodies[id];
+        cr_v2 a1;
+        float alpha1;
+        carom_status st;
+        if (b->type != CAROM_BODY_DYNAMIC)
+            continue;
+        st = cr_body_accel(&w->def, id, b, &w->info[id], &a1, &alpha1);
+        if (st != CAROM_OK) {
+            w->error_body = cr_body_id(w, id);
+            return st;
+        }
+        if (!cr_eq(a1.x, b->a.x) || !cr_eq(a1.y, b->a.y))
+            cr_add_velocity(b, cr_vscale(half, cr_vsub(a1, b->a)));
+        b->a = a1;
+#if CAROM_ENABLE_ROTATION
+        b->w = cr_add(b->w, cr_mul(half, cr_sub(alpha1, b->alpha)));
+        b->alpha = alpha1;
+#endif
+    }
+    return CAROM_OK;
+}
+
+/* Every awake body's state finite and within the documented range. */
+static carom_status cr_check_state(carom_world *w)
+{
+    int i;
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        const cr_body *b = &w->bodies[id];
+        float ext = w->info[id].shape.extent;
+        if (!cr_finite(b->x.x) || !cr_finite(b->x.y) || !cr_finite(b->v.x) ||
+            !cr_finite(b->v.y) || !cr_finite(b->w) || !cr_finite(b->q.c) ||
+            !cr_finite(b->q.s)) {
+            w->error_body = cr_body_id(w, id);
+            return CAROM_ERR_NOT_FINITE;
+        }
+        if (!cr_v2_within(b->x, CAROM_LIMIT_MAX_LENGTH) ||
+            !cr_v2_within(b->v, CAROM_LIMIT_MAX_SPEED) ||
+            cr_gt(cr_mul(cr_abs(b->w), ext), CAROM_LIMIT_MAX_SPEED)) {
+            w->error_body = cr_body_id(w, id);
+            return CAROM_ERR_OUT_OF_RANGE;
+        }
+    }
+    return CAROM_OK;
 }
 
 /*
- * One step of the discrete method:
- *   integrate -> broadphase -> narrowphase -> impulses -> projection.
- * Contacts are found where the bodies are at the end of the step, so an
- * impact inside the step is treated as if it happened at its end: the
- * time-step error of ERRATA.md 4 (see docs/physics.md).
+ * One step, all methods:
+ *   pairs -> contacts -> drifts -> for each substep:
+ *       classify -> kick + warm start -> solve (push-out) ->
+ *       move (drifts; events: impacts in time order) -> relax
+ *   -> restitution (discrete) -> finish velocities (Verlet) -> check ->
+ *   sleep -> keep impulses.
  */
-static carom_status cr_step_discrete(carom_world *w)
+static carom_status cr_step(carom_world *w)
 {
-    carom_status st = CAROM_OK, st2;
-    float t1;
-    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
-    t1 = cr_mul((float)(w->steps + 1), w->def.dt);
-    if (!cr_integrate(w, w->def.dt))
-        st = CAROM_ERR_NOT_FINITE;
-    st2 = cr_resolve_contacts(w, t1, 0);
-    return st != CAROM_OK ? st : st2;
-}
+    int n = w->def.substeps, k;
+    float dt = w->def.dt, h = cr_div(dt, (float)n);
+    int events = w->method != CAROM_METHOD_DISCRETE && CAROM_ENABLE_EVENTS;
+    carom_status st;
+    cr_substep sub;
 
-#if CAROM_ENABLE_EVENTS
-/* The events methods: impacts in time order inside the step (events.c),
- * then resting contacts as in the discrete method (impacts deferred). */
-static carom_status cr_step_in_time_order(carom_world *w)
-{
-    carom_status st = cr_step_events(w);
-    int dropped = w->pairs_dropped;
-    float t1 = cr_mul((float)(w->steps + 1), w->def.dt);
-    carom_status st2 = cr_resolve_contacts(w, t1, 1);
-    if (st == CAROM_OK && dropped > 0)
-        st = CAROM_ERR_PAIR_CAPACITY;
-    return st != CAROM_OK ? st : st2;
+    cr_scale_compute(w, &w->scale);
+    cr_island_awake_list(w);
+    if (w->awake_count == 0)
+        return CAROM_OK; /* everything sleeps or stands still */
+    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
+    cr_drifts_begin(w);
+
+    st = cr_find_pairs(w);
+    /* a moving body reaching a sleeping island wakes it: then the pairs
+     * of the woken bodies are wanted too */
+    while (st == CAROM_OK && cr_island_wake_touched(w)) {
+        cr_island_awake_list(w);
+        cr_drifts_begin(w);
+        st = cr_find_pairs(w);
+    }
+    if (st != CAROM_OK)
+        return st;
+    CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
+    st = cr_contacts_build(w, dt);
+    if (st != CAROM_OK)
+        return st;
+
+    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
+    cr_solver_begin(w);
+    cr_substep_init(&sub, w, h);
+    if (w->prime)
+        cr_solver_prime(w, &sub);
+    if (events) {
+        CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
+        cr_solver_classify(w, 1);
+        cr_events_begin(w);
+    }
+
+    for (k = 0; k < n; ++k) {
+        float t0 = cr_mul((float)k, h);
+        float t1 = k + 1 == n ? dt : cr_mul((float)(k + 1), h);
+        int events_now = events && !w->budget_hit;
+        if (k > 0 && events_now) {
+            CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
+            st = cr_events_add_contacts(w, t0);
+            if (st != CAROM_OK)
+                return st;
+        }
+        CR_PHASE(w, CAROM_PHASE_RESTING);
+        cr_solver_classify(w, events_now);
+        cr_sync_active(w, t0);
+        cr_solver_update_deltas(w);
+        cr_solver_kick_and_warm(w, &sub);
+        cr_solver_solve(w, &sub, 1,
+                        k == 0 && w->prime ? CR_PRIME_ITERATIONS : w->def.iterations);
+        cr_solver_set_drifts(w, &sub);
+        if (events_now) {
+            CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
+            cr_events_refresh(w, t0);
+            st = cr_events_advance(w, t1);
+            if (st != CAROM_OK)
+                return st;
+        }
+        CR_PHASE(w, CAROM_PHASE_INTEGRATION);
+        cr_sync_active(w, t1);
+        CR_PHASE(w, CAROM_PHASE_RESTING);
+        cr_solver_update_deltas(w);
+        cr_solver_correct(w, &sub, 1);
+        cr_solver_update_deltas(w);
+        cr_solver_solve(w, &sub, 0, w->def.relax_iterations);
+        cr_release_active(w, t1);
+    }
+    if (!events || w->budget_hit) {
+        CR_PHASE(w, CAROM_PHASE_IMPULSES);
+        cr_solver_restitution(w);
+        if (w->budget_hit)
+            ++w->stats.budget_steps;
+    }
+
+    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
+    cr_sync_all(w, dt);
+    st = cr_finish_velocities(w);
+    if (st != CAROM_OK)
+        return st;
+    st = cr_check_state(w);
+    if (st != CAROM_OK)
+        return st;
+    CR_PHASE(w, CAROM_PHASE_RESTING);
+    cr_contacts_store(w);
+    cr_island_sleep(w, dt);
+    w->prime = 0;
+    return CAROM_OK;
 }
-#endif
 
 carom_status carom_world_step(carom_world *w)
 {
     carom_status st;
+    carom_stats saved;
+    int i;
     if (!w)
         return CAROM_ERR_NULL;
+    for (i = 0; i < w->slot_count; ++i)
+        w->backup[i] = w->bodies[i];
+    saved = w->stats;
     w->event_count = 0;
     w->events_dropped = 0;
-    if (w->needs_prime) {
-        CR_PHASE(w, CAROM_PHASE_RESTING); /* resting forces of the start */
-        cr_prime(w);
-    }
-    switch (w->method) {
-    case CAROM_METHOD_DISCRETE:
-        st = cr_step_discrete(w);
-        break;
-#if CAROM_ENABLE_EVENTS
-    case CAROM_METHOD_EVENTS:
-    case CAROM_METHOD_FIRST_IMPACT:
-        st = cr_step_in_time_order(w);
-        break;
-#endif
-    default:
-        return CAROM_ERR_BAD_METHOD;
-    }
+    w->impacts_this_step = 0;
+    w->budget_hit = 0;
+    w->error_body = -1;
+    w->contact_count = 0;
+
+    st = cr_step(w);
     CR_PHASE_OFF();
+
+    if (st != CAROM_OK) {
+        /* undo: the bodies as they were, the impulses and counters too */
+        int err = w->error_body;
+        for (i = 0; i < w->slot_count; ++i)
+            w->bodies[i] = w->backup[i];
+        w->stats = saved;
+        w->event_count = 0;
+        w->events_dropped = 0;
+        w->error_body = err;
+        return st;
+    }
+    {
+        cr_warm *t = w->warm;
+        w->warm = w->warm_next;
+        w->warm_count = w->warm_next_count;
+        w->warm_next = t;
+    }
     ++w->steps;
-    w->impacts_total += w->event_count;
+    ++w->stats.steps;
+    if (w->pair_count > w->stats.max_pairs_used)
+        w->stats.max_pairs_used = w->pair_count;
+    if (w->contact_count > w->stats.max_contacts_used)
+        w->stats.max_contacts_used = w->contact_count;
+    if (w->impacts_this_step > w->stats.max_impacts_used)
+        w->stats.max_impacts_used = w->impacts_this_step;
+    w->stats.awake_bodies = w->awake_count;
+    w->stats.contacts = w->contact_count;
 #if CAROM_ENABLE_PROFILE
     if (w->profile) {
         w->profile->steps += 1u;
         w->profile->body_steps += (uint64_t)w->body_count;
-        w->profile->impacts += (uint64_t)w->event_count;
+        w->profile->impacts += (uint64_t)w->impacts_this_step;
     }
 #endif
-    if (st == CAROM_OK && w->events_dropped > 0)
-        st = CAROM_ERR_EVENT_CAPACITY;
-    return st;
+    return CAROM_OK;
 }
 
 /* ---- results --------------------------------------------------------------------- */
@@ -534,13 +840,43 @@ int carom_world_events_dropped(const carom_world *w)
     return w ? w->events_dropped : 0;
 }
 
+int carom_world_error_body(const carom_world *w)
+{
+    return w ? w->error_body : -1;
+}
+
+carom_status carom_world_get_tolerances(const carom_world *w,
+                                        carom_tolerances *out)
+{
+    cr_scale s;
+    float g;
+    if (!w || !out)
+        return CAROM_ERR_NULL;
+    /* the scale follows the bodies: computed as the next step would */
+    cr_scale_compute(w, &s);
+    g = cr_vlen(w->def.gravity);
+    out->length_unit = s.length;
+    out->linear_slop = s.slop;
+    out->rest_speed = cr_lt(w->def.rest_speed, 0.0f)
+                          ? cr_mul(cr_mul(CAROM_REST_SPEED_PER_ACCEL_DT, g), w->def.dt)
+                          : w->def.rest_speed;
+    out->sleep_speed = s.sleep_speed;
+    return CAROM_OK;
+}
+
 carom_status carom_world_get_stats(const carom_world *w, carom_stats *out)
 {
     if (!w || !out)
         return CAROM_ERR_NULL;
-    out->steps = w->steps;
-    out->impacts = w->impacts_total;
-    out->toi_queries = w->toi_queries;
-    out->toi_early_outs = w->toi_early_outs;
+    *out = w->stats;
     return CAROM_OK;
+}
+
+#define CR_STR(x) #x
+#define CR_VERSION_STRING(a, b, c) CR_STR(a) "." CR_STR(b) "." CR_STR(c)
+
+const char *carom_version(void)
+{
+    return CR_VERSION_STRING(CAROM_VERSION_MAJOR, CAROM_VERSION_MINOR,
+                             CAROM_VERSION_PATCH);
 }

@@ -54,8 +54,8 @@ const char usage[] =
     "options:\n"
     "  --steps N                  number of steps (overrides steps=)\n"
     "  --dt DT                    time step in seconds (overrides dt=)\n"
-    "  --velocity-iterations N    overrides velocity-iterations=\n"
-    "  --position-iterations N    overrides position-iterations=\n"
+    "  --velocity-iterations N    Box2D velocity iterations (default 8)\n"
+    "  --position-iterations N    Box2D position iterations (default 3)\n"
     "  --trace FILE               every body's state at step 0 and after every\n"
     "                             step: step,t,body,x,y,angle,vx,vy,omega\n"
     "  --events FILE              every contact that begins touching faster than\n"
@@ -448,10 +448,6 @@ int cmd_run(int argc, char **argv)
         s.steps = o.steps;
     if (o.dt > 0.0)
         s.world.dt = (float)o.dt;
-    if (o.vel_iters >= 0)
-        s.world.velocity_iterations = (int)o.vel_iters;
-    if (o.pos_iters >= 0)
-        s.world.position_iterations = (int)o.pos_iters;
     const char *path = o.scene_path;
     g_scene = &s;
 
@@ -466,7 +462,11 @@ int cmd_run(int argc, char **argv)
     }
 
     const float dt = s.world.dt;
-    const float rest = s.world.rest_speed;
+    /* carom's rest speed as resolved for this scene (CAROM_AUTO: from
+     * |gravity| dt) is Box2D's restitution threshold */
+    carom_tolerances tol;
+    carom_world_get_tolerances(cw, &tol);
+    const float rest = tol.rest_speed;
     b2World world(b2Vec2(s.world.gravity.x, s.world.gravity.y));
     world.SetAllowSleeping(false);
     event_listener listener;
@@ -549,7 +549,7 @@ int cmd_run(int argc, char **argv)
                      carom_method_name(s.world.method));
         std::fprintf(stderr, "carom-box2d: note: Box2D's contact slop is b2_linearSlop = "
                      "%g m (compiled in); the scene's slop=%g m is not used\n",
-                     (double)b2_linearSlop, (double)s.world.linear_slop);
+                     (double)b2_linearSlop, (double)tol.linear_slop);
         if (any_polygon)
             std::fprintf(stderr, "carom-box2d: note: every Box2D polygon has a skin of b2_polygonRadius "
                          "= %g m (it collides as if that much larger all round); thinnest polygon: body "
@@ -607,8 +607,10 @@ int cmd_run(int argc, char **argv)
     if (events)
         std::fputs("t,body_a,body_b,nx,ny,impulse,approach_speed\n", events);
 
-    const int vel_iters = s.world.velocity_iterations;
-    const int pos_iters = s.world.position_iterations;
+    /* Box2D's own recommended counts unless given: the scene's substeps
+     * are carom's solver, not Box2D's */
+    const int vel_iters = o.vel_iters >= 0 ? (int)o.vel_iters : 8;
+    const int pos_iters = o.pos_iters >= 0 ? (int)o.pos_iters : 3;
     double spent = 0.0;
     long k;
     for (k = 0; k < s.steps; ++k) {

@@ -358,15 +358,14 @@ static int cmd_sim(int argc, char **argv, int profile)
         if (st != CAROM_OK) {
             fprintf(stderr, "carom: %s: step %ld (t = %.9g s): %s\n", scene_path,
                     k + 1, (double)carom_world_time(w), carom_status_string(st));
-            if (st == CAROM_ERR_EVENT_CAPACITY && s.world.max_events > 0)
-                fprintf(stderr, "carom: raise the world's max-events= "
-                                "(now %d) or use a smaller dt\n", s.world.max_events);
-            else if (st == CAROM_ERR_EVENT_CAPACITY)
-                fprintf(stderr, "carom: raise the world's max-events= (the default "
-                                "is %d per body, at least %d) or use a smaller dt\n",
-                        CAROM_DEFAULT_EVENTS_PER_BODY, CAROM_MIN_EVENTS);
             if (st == CAROM_ERR_PAIR_CAPACITY)
-                fprintf(stderr, "carom: raise the world's max-pairs=\n");
+                fprintf(stderr, "carom: raise the world's max-pairs= (now %d)\n",
+                        s.world.max_pairs);
+            else if (st == CAROM_ERR_CONTACT_CAPACITY)
+                fprintf(stderr, "carom: raise the world's max-contacts= (now %d)\n",
+                        s.world.max_contacts);
+            else if (carom_world_error_body(w) >= 0)
+                fprintf(stderr, "carom: body %d\n", carom_world_error_body(w));
             rc = EXIT_SIM;
             break;
         }

@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,7 +15,6 @@
 #define SCENE_MAX_LINE 4096
 #define SCENE_DEFAULT_STEPS 600L
 #define SCENE_MAX_STEPS 1000000000L
-#define SCENE_MAX_ITERATIONS 1000L /* the library's limit */
 #define SCENE_MAX_BYTES (64L << 20)
 
 typedef struct parser {
@@ -138,15 +138,58 @@ static int seen_before(parser *p, unsigned *mask, unsigned bit, const char *key)
     return 0;
 }
 
+/* A tolerance: a number >= 0, or "auto" (CAROM_AUTO: derived). */
+static int parse_auto(parser *p, const char *key, const char *val, float *out)
+{
+    if (strcmp(val, "auto") == 0) {
+        *out = CAROM_AUTO;
+        return 0;
+    }
+    if (parse_float(p, key, val, out))
+        return -1;
+    if (*out < 0.0f)
+        return fail(p, "%s: must be >= 0 or auto, got %s", key, val);
+    return 0;
+}
+
+/* The integer keys of the world line: name, field, range. */
+typedef struct world_int_key {
+    const char *name;
+    size_t offset; /* of an int in carom_world_def */
+    long lo, hi;
+} world_int_key;
+
+static const world_int_key world_int_keys[] = {
+    {"substeps", offsetof(carom_world_def, substeps), 1, 64},
+    {"iterations", offsetof(carom_world_def, iterations), 1, 64},
+    {"relax-iterations", offsetof(carom_world_def, relax_iterations), 0, 64},
+    {"max-pairs", offsetof(carom_world_def, max_pairs), 0, 1L << 26},
+    {"max-contacts", offsetof(carom_world_def, max_contacts), 0, 1L << 26},
+    {"max-events", offsetof(carom_world_def, max_events), 0, 1L << 26},
+    {"max-impacts", offsetof(carom_world_def, max_impacts), 0, 1L << 30},
+};
+
 static int parse_world(parser *p, char *rest, scene *s)
 {
     char *tok, *save = NULL;
     unsigned seen = 0;
+    size_t k;
     for (tok = strtok_r(rest, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
         char *key, *val;
         if (split_kv(p, tok, &key, &val))
             return -1;
-        if (strcmp(key, "gravity") == 0) {
+        for (k = 0; k < sizeof world_int_keys / sizeof world_int_keys[0]; ++k)
+            if (strcmp(key, world_int_keys[k].name) == 0)
+                break;
+        if (k < sizeof world_int_keys / sizeof world_int_keys[0]) {
+            const world_int_key *wk = &world_int_keys[k];
+            long v;
+            if (seen_before(p, &seen, 1024u << k, key) || parse_long(p, key, val, &v))
+                return -1;
+            if (v < wk->lo || v > wk->hi)
+                return fail(p, "%s: must be in [%ld, %ld], got %s", key, wk->lo, wk->hi, val);
+            *(int *)(void *)((char *)&s->world + wk->offset) = (int)v;
+        } else if (strcmp(key, "gravity") == 0) {
             if (seen_before(p, &seen, 1u, key) || parse_vec(p, key, val, &s->world.gravity))
                 return -1;
         } else if (strcmp(key, "dt") == 0) {
@@ -165,32 +208,35 @@ static int parse_world(parser *p, char *rest, scene *s)
             if (carom_method_from_name(val, &s->world.method) != CAROM_OK)
                 return fail(p, "method: unknown method '%s' (events, discrete, first-impact)", val);
         } else if (strcmp(key, "rest-speed") == 0) {
-            if (seen_before(p, &seen, 16u, key) || parse_float(p, key, val, &s->world.rest_speed))
+            if (seen_before(p, &seen, 16u, key) || parse_auto(p, key, val, &s->world.rest_speed))
                 return -1;
-            if (s->world.rest_speed < 0.0f)
-                return fail(p, "rest-speed: must be >= 0, got %s", val);
         } else if (strcmp(key, "slop") == 0) {
-            if (seen_before(p, &seen, 32u, key) || parse_float(p, key, val, &s->world.linear_slop))
+            if (seen_before(p, &seen, 32u, key) || parse_auto(p, key, val, &s->world.linear_slop))
                 return -1;
-            if (s->world.linear_slop < 0.0f)
-                return fail(p, "slop: must be >= 0, got %s", val);
+        } else if (strcmp(key, "length-unit") == 0) {
+            if (seen_before(p, &seen, 64u, key) || parse_auto(p, key, val, &s->world.length_unit))
+                return -1;
+            if (s->world.length_unit == 0.0f)
+                return fail(p, "length-unit: must be > 0 or auto, got %s", val);
+        } else if (strcmp(key, "sleep") == 0) {
+            if (seen_before(p, &seen, 128u, key))
+                return -1;
+            if (strcmp(val, "on") == 0)
+                s->world.enable_sleep = 1;
+            else if (strcmp(val, "off") == 0)
+                s->world.enable_sleep = 0;
+            else
+                return fail(p, "sleep: want on or off, got '%s'", val);
+        } else if (strcmp(key, "sleep-time") == 0) {
+            if (seen_before(p, &seen, 256u, key) || parse_float(p, key, val, &s->world.sleep_time))
+                return -1;
+            if (s->world.sleep_time < 0.0f)
+                return fail(p, "sleep-time: must be >= 0, got %s", val);
         } else if (strcmp(key, "velocity-iterations") == 0 ||
-                   strcmp(key, "position-iterations") == 0 ||
-                   strcmp(key, "max-events") == 0 ||
-                   strcmp(key, "max-pairs") == 0) {
-            long v;
-            unsigned bit = key[0] == 'v' ? 64u : key[0] == 'p' ? 128u
-                           : strcmp(key, "max-events") == 0 ? 256u : 512u;
-            if (seen_before(p, &seen, bit, key) || parse_long(p, key, val, &v))
-                return -1;
-            long lo = bit >= 256u && bit != 512u ? 1 : 0;
-            long hi = bit <= 128u ? SCENE_MAX_ITERATIONS : (1L << 24);
-            if (v < lo || v > hi)
-                return fail(p, "%s: must be in [%ld, %ld], got %s", key, lo, hi, val);
-            if (bit == 64u) s->world.velocity_iterations = (int)v;
-            else if (bit == 128u) s->world.position_iterations = (int)v;
-            else if (bit == 256u) s->world.max_events = (int)v;
-            else s->world.max_pairs = (int)v;
+                   strcmp(key, "position-iterations") == 0) {
+            return fail(p, "%s: no longer a setting; the contact solver takes "
+                           "substeps=, iterations= and relax-iterations= "
+                           "(docs/scene-format.md)", key);
         } else {
             return fail(p, "world: unknown key '%s'", key);
         }

@@ -1,16 +1,22 @@
 /*
- * shape.c -- body definitions: validation, polygon repair, mass properties
- * and bounding boxes.
+ * body.c -- body definitions: validation against carom's documented ranges
+ * (carom_config.h CAROM_LIMIT_*), polygon repair, mass properties and
+ * bounding boxes.
  *
  * Polygons are stored about their centroid, so the body's position is its
  * centre of mass and rotation happens about it; local_center remembers where
  * the definition's origin was, to report positions in the caller's frame.
  */
-#include "internal.h"
+#include "body.h"
 
 #define CR_PI 3.14159265358979323846f
 
 static int cr_vec_finite(cr_v2 v) { return cr_finite(v.x) && cr_finite(v.y); }
+
+int cr_v2_within(cr_v2 x, float limit)
+{
+    return cr_le(cr_abs(x.x), limit) && cr_le(cr_abs(x.y), limit);
+}
 
 /* ---- polygon checks -------------------------------------------------------- */
 
@@ -43,9 +49,12 @@ static carom_status cr_polygon_check(const cr_v2 *in, int n, cr_v2 *out)
         return CAROM_ERR_TOO_FEW_VERTICES;
     if (n > CAROM_MAX_POLYGON_VERTICES)
         return CAROM_ERR_TOO_MANY_VERTICES;
-    for (i = 0; i < n; ++i)
+    for (i = 0; i < n; ++i) {
         if (!cr_vec_finite(in[i]))
             return CAROM_ERR_NOT_FINITE;
+        if (!cr_v2_within(in[i], CAROM_LIMIT_MAX_LENGTH))
+            return CAROM_ERR_OUT_OF_RANGE;
+    }
     for (i = 0; i < n; ++i)
         for (j = i + 1; j < n; ++j)
             if (cr_eq(in[i].x, in[j].x) && cr_eq(in[i].y, in[j].y))
@@ -153,6 +162,8 @@ carom_status carom_body_def_set_box(carom_body_def *def, float hx, float hy)
         return CAROM_ERR_NOT_FINITE;
     if (!cr_gt(hx, 0.0f) || !cr_gt(hy, 0.0f))
         return CAROM_ERR_DEGENERATE_POLYGON;
+    if (cr_gt(hx, CAROM_LIMIT_MAX_LENGTH) || cr_gt(hy, CAROM_LIMIT_MAX_LENGTH))
+        return CAROM_ERR_OUT_OF_RANGE;
     def->shape = CAROM_SHAPE_POLYGON;
     def->vertex_count = 4;
     def->vertices[0] = cr_v(cr_neg(hx), cr_neg(hy));
@@ -164,27 +175,117 @@ carom_status carom_body_def_set_box(carom_body_def *def, float hx, float hy)
 
 carom_status carom_body_def_validate(const carom_body_def *def)
 {
-    cr_body scratch;
-    return cr_body_build(def, &scratch);
+    cr_body hot;
+    cr_body_info info;
+    return cr_body_build(def, &hot, &info);
+}
+
+int cr_accel_in_range(const cr_body_info *info, cr_v2 force, float torque)
+{
+    float fmax = cr_mul(CAROM_LIMIT_MAX_ACCEL, info->m);
+    float tmax = cr_mul(CAROM_LIMIT_MAX_ACCEL, info->I);
+    if (!cr_gt(info->m, 0.0f))
+        return 1; /* not dynamic: forces do nothing */
+    if (!cr_le(cr_abs(force.x), fmax) || !cr_le(cr_abs(force.y), fmax))
+        return 0;
+    /* alpha times extent is the tangential acceleration of the rim */
+    return cr_le(cr_mul(cr_abs(torque), info->shape.extent), tmax);
+}
+
+/* The shape of `def`, about its centroid; *area and *unit_inertia (polar
+ * moment per unit density) for the mass. */
+static carom_status cr_shape_build(const carom_body_def *def, cr_shape *s,
+                                   float *area, float *unit_inertia)
+{
+    int i;
+    s->kind = def->shape;
+    s->radius = 0.0f;
+    s->count = 0;
+    s->local_center = cr_v(0.0f, 0.0f);
+    for (i = 0; i < CAROM_MAX_POLYGON_VERTICES; ++i) {
+        s->verts[i] = cr_v(0.0f, 0.0f);
+        s->norms[i] = cr_v(0.0f, 0.0f);
+    }
+    if (def->shape == CAROM_SHAPE_CIRCLE) {
+        float r = def->radius;
+        if (!cr_ge(r, CAROM_LIMIT_MIN_SIZE) || !cr_le(r, CAROM_LIMIT_MAX_LENGTH))
+            return CAROM_ERR_BAD_RADIUS;
+        s->radius = r;
+        s->extent = r;
+        s->half_width = r;
+        *area = cr_mul(CR_PI, cr_mul(r, r));
+        *unit_inertia = cr_mul(cr_mul(0.5f, *area), cr_mul(r, r));
+        return CAROM_OK;
+    }
+#if CAROM_ENABLE_POLYGONS
+    {
+        cr_v2 ccw[CAROM_MAX_POLYGON_VERTICES], center;
+        int n = def->vertex_count, j;
+        carom_status st = cr_polygon_check(def->vertices, n, ccw);
+        if (st != CAROM_OK)
+            return st;
+        cr_polygon_mass(ccw, n, area, &center, unit_inertia);
+        if (!cr_finite(*area) || !cr_gt(*area, 0.0f) ||
+            !cr_finite(*unit_inertia) || !cr_gt(*unit_inertia, 0.0f) ||
+            !cr_vec_finite(center))
+            return CAROM_ERR_DEGENERATE_POLYGON;
+        s->count = n;
+        s->local_center = center;
+        s->extent = 0.0f;
+        for (i = 0; i < n; ++i) {
+            s->verts[i] = cr_vsub(ccw[i], center);
+            s->extent = cr_max(s->extent, cr_vlen(s->verts[i]));
+        }
+        for (i = 0; i < n; ++i) {
+            cr_v2 e = cr_vsub(s->verts[(i + 1) % n], s->verts[i]);
+            float len = cr_vlen(e);
+            s->norms[i] = cr_v(cr_div(e.y, len), cr_div(cr_neg(e.x), len));
+        }
+        /* the smallest width: across each edge, to the farthest vertex */
+        s->half_width = s->extent;
+        for (i = 0; i < n; ++i) {
+            float depth = 0.0f;
+            for (j = 0; j < n; ++j)
+                depth = cr_min(depth, cr_vdot(s->norms[i],
+                                              cr_vsub(s->verts[j], s->verts[i])));
+            s->half_width = cr_min(s->half_width, cr_mul(-0.5f, depth));
+        }
+        if (!cr_ge(s->half_width, CAROM_LIMIT_MIN_SIZE))
+            return CAROM_ERR_DEGENERATE_POLYGON;
+        return CAROM_OK;
+    }
+#else
+    return CAROM_ERR_DISABLED;
+#endif
 }
 
 /*
- * Validate `def` completely and build the body in *out. *out is written
- * only on success, so a failed add leaves the world untouched.
+ * Validate `def` completely and build the body. Nothing is written unless
+ * everything is valid, so a failed add leaves the world untouched.
  */
-carom_status cr_body_build(const carom_body_def *def, cr_body *out)
+carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
+                           cr_body_info *info)
 {
     cr_body b;
-    int i;
-    float area, unit_inertia, qlen;
-    cr_v2 center = cr_v(0.0f, 0.0f);
+    cr_body_info in;
+    float area = 0.0f, unit_inertia = 0.0f, qlen;
+    carom_status st;
 
-    if (!def || !out)
+    if (!def || !hot || !info)
         return CAROM_ERR_NULL;
-    if (def->type != CAROM_BODY_DYNAMIC && def->type != CAROM_BODY_STATIC)
+    if (def->type != CAROM_BODY_DYNAMIC && def->type != CAROM_BODY_STATIC &&
+        def->type != CAROM_BODY_KINEMATIC)
         return CAROM_ERR_BAD_BODY_TYPE;
+#if !CAROM_ENABLE_KINEMATIC
+    if (def->type == CAROM_BODY_KINEMATIC)
+        return CAROM_ERR_DISABLED;
+#endif
     if (def->shape != CAROM_SHAPE_CIRCLE && def->shape != CAROM_SHAPE_POLYGON)
         return CAROM_ERR_BAD_SHAPE;
+#if CAROM_ENABLE_POLYGONS && !CAROM_ENABLE_DYNAMIC_POLYGONS
+    if (def->shape == CAROM_SHAPE_POLYGON && def->type != CAROM_BODY_STATIC)
+        return CAROM_ERR_DISABLED;
+#endif
     if (!cr_vec_finite(def->position) || !cr_vec_finite(def->velocity) ||
         !cr_finite(def->rotation.c) || !cr_finite(def->rotation.s) ||
         !cr_finite(def->angular_velocity) || !cr_finite(def->density) ||
@@ -204,6 +305,8 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *out)
                   cr_mul(def->rotation.s, def->rotation.s));
     if (!cr_gt(qlen, 0.0f) || !cr_finite(qlen))
         return CAROM_ERR_BAD_ROTATION;
+    if (!cr_v2_within(def->position, CAROM_LIMIT_MAX_LENGTH))
+        return CAROM_ERR_OUT_OF_RANGE;
 #if !CAROM_ENABLE_FORCES
     if (!cr_eq(def->force.x, 0.0f) || !cr_eq(def->force.y, 0.0f) ||
         !cr_eq(def->torque, 0.0f))
@@ -214,125 +317,88 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *out)
         return CAROM_ERR_DISABLED;
 #endif
 
-    b.type = def->type;
-    b.shape = def->shape;
-    b.radius = 0.0f;
-    b.count = 0;
-    for (i = 0; i < CAROM_MAX_POLYGON_VERTICES; ++i) {
-        b.verts[i] = cr_v(0.0f, 0.0f);
-        b.norms[i] = cr_v(0.0f, 0.0f);
-    }
+    st = cr_shape_build(def, &in.shape, &area, &unit_inertia);
+    if (st != CAROM_OK)
+        return st;
+    if (def->type != CAROM_BODY_STATIC &&
+        (!cr_v2_within(def->velocity, CAROM_LIMIT_MAX_SPEED) ||
+         cr_gt(cr_mul(cr_abs(def->angular_velocity), in.shape.extent),
+               CAROM_LIMIT_MAX_SPEED)))
+        return CAROM_ERR_OUT_OF_RANGE;
 
-    if (def->shape == CAROM_SHAPE_CIRCLE) {
-        if (!cr_gt(def->radius, 0.0f))
-            return CAROM_ERR_BAD_RADIUS;
-        b.radius = def->radius;
-        area = cr_mul(CR_PI, cr_mul(b.radius, b.radius));
-        unit_inertia = cr_mul(cr_mul(0.5f, area), cr_mul(b.radius, b.radius));
-        b.extent = b.radius;
-        if (!cr_finite(area) || !cr_gt(area, 0.0f) || !cr_finite(unit_inertia))
-            return CAROM_ERR_BAD_RADIUS;
-    } else {
-#if CAROM_ENABLE_POLYGONS
-        cr_v2 ccw[CAROM_MAX_POLYGON_VERTICES];
-        int n = def->vertex_count;
-        carom_status st = cr_polygon_check(def->vertices, n, ccw);
-        if (st != CAROM_OK)
-            return st;
-        cr_polygon_mass(ccw, n, &area, &center, &unit_inertia);
-        if (!cr_finite(area) || !cr_gt(area, 0.0f) ||
-            !cr_finite(unit_inertia) || !cr_gt(unit_inertia, 0.0f) ||
-            !cr_vec_finite(center))
-            return CAROM_ERR_DEGENERATE_POLYGON;
-        b.count = n;
-        b.extent = 0.0f;
-        for (i = 0; i < n; ++i) {
-            b.verts[i] = cr_vsub(ccw[i], center);
-            b.extent = cr_max(b.extent, cr_vlen(b.verts[i]));
-        }
-        for (i = 0; i < n; ++i) {
-            cr_v2 e = cr_vsub(b.verts[(i + 1) % n], b.verts[i]);
-            float len = cr_vlen(e);
-            b.norms[i] = cr_v(cr_div(e.y, len), cr_div(cr_neg(e.x), len));
-        }
-#else
-        return CAROM_ERR_DISABLED;
-#endif
-    }
-
-    b.local_center = center;
     b.q = cr_rot_normalize(def->rotation);
-    b.x = cr_vadd(def->position, cr_rotate(b.q, center));
-    b.vel = def->velocity;
+    b.x = cr_vadd(def->position, cr_rotate(b.q, in.shape.local_center));
+    if (!cr_v2_within(b.x, CAROM_LIMIT_MAX_LENGTH))
+        return CAROM_ERR_OUT_OF_RANGE;
+    b.v = def->velocity;
     b.w = def->angular_velocity;
-    b.restitution = def->restitution;
-    b.friction = def->friction;
-    b.force = def->force;
-    b.torque = def->torque;
-    b.acc = cr_v(0.0f, 0.0f);
+    b.a = cr_v(0.0f, 0.0f);
     b.alpha = 0.0f;
-    b.acc_c = cr_v(0.0f, 0.0f);
-    b.alpha_c = 0.0f;
-    b.dx = cr_v(0.0f, 0.0f);
-    b.dtheta = 0.0f;
-    b.vel_saved = cr_v(0.0f, 0.0f);
-    b.w_saved = 0.0f;
+#if CAROM_ENABLE_COMPENSATED
+    b.xc = cr_v(0.0f, 0.0f);
+    b.vc = cr_v(0.0f, 0.0f);
+#endif
+    b.inv_m = 0.0f;
+    b.inv_I = 0.0f;
+    b.still_time = 0.0f;
+    b.type = (unsigned short)def->type;
+    b.flags = CR_BODY_ALIVE | CR_BODY_AWAKE;
+    in.restitution = def->restitution;
+    in.friction = def->friction;
+    in.force = def->force;
+    in.torque = def->torque;
+    in.generation = 0u;
+    in.sleep_island = -1;
+    in.m = 0.0f;
+    in.I = 0.0f;
 
-    if (def->type == CAROM_BODY_STATIC) {
-        b.m = b.inv_m = b.I = b.inv_I = 0.0f;
-        b.vel = cr_v(0.0f, 0.0f);
-        b.w = 0.0f;
-    } else {
+    if (def->type == CAROM_BODY_DYNAMIC) {
         float density = def->density;
         if (cr_gt(def->mass, 0.0f))
             density = cr_div(def->mass, area);
-        b.m = cr_gt(def->mass, 0.0f) ? def->mass : cr_mul(density, area);
-        b.I = cr_mul(density, unit_inertia);
-        if (!cr_finite(b.m) || !cr_gt(b.m, 0.0f))
+        in.m = cr_gt(def->mass, 0.0f) ? def->mass : cr_mul(density, area);
+        in.I = cr_mul(density, unit_inertia);
+        if (!cr_ge(in.m, CAROM_LIMIT_MIN_MASS) || !cr_le(in.m, CAROM_LIMIT_MAX_MASS) ||
+            !cr_ge(in.I, CAROM_LIMIT_MIN_MASS) || !cr_le(in.I, CAROM_LIMIT_MAX_MASS))
             return CAROM_ERR_BAD_MASS;
-        if (!cr_finite(b.I) || !cr_gt(b.I, 0.0f))
-            return CAROM_ERR_BAD_MASS;
-        b.inv_m = cr_div(1.0f, b.m);
+        b.inv_m = cr_div(1.0f, in.m);
 #if CAROM_ENABLE_ROTATION
-        b.inv_I = cr_div(1.0f, b.I);
-#else
-        b.inv_I = 0.0f;
+        b.inv_I = cr_div(1.0f, in.I);
 #endif
+        if (!cr_accel_in_range(&in, def->force, def->torque))
+            return CAROM_ERR_OUT_OF_RANGE;
+    } else if (def->type == CAROM_BODY_STATIC) {
+        b.v = cr_v(0.0f, 0.0f);
+        b.w = 0.0f;
     }
-    *out = b;
+    *hot = b;
+    *info = in;
     return CAROM_OK;
 }
 
-/* World position of the definition's origin: centre minus rotated offset. */
-carom_vec2 cr_body_origin(const cr_body *b)
+cr_v2 cr_body_origin(const cr_body *b, const cr_body_info *info)
 {
-    return cr_vsub(b->x, cr_rotate(b->q, b->local_center));
+    return cr_vsub(b->x, cr_rotate(b->q, info->shape.local_center));
 }
 
-/* Axis-aligned box around the body's shape, grown by `margin`. */
-void cr_body_bounds(const cr_body *b, float margin, cr_proxy *out)
+void cr_shape_box(const cr_shape *s, cr_v2 x, cr_rot q, cr_box *out)
 {
-    if (b->shape == CAROM_SHAPE_CIRCLE) {
-        float r = cr_add(b->radius, margin);
-        out->lo_x = cr_sub(b->x.x, r);
-        out->hi_x = cr_add(b->x.x, r);
-        out->lo_y = cr_sub(b->x.y, r);
-        out->hi_y = cr_add(b->x.y, r);
+    if (s->kind == CAROM_SHAPE_CIRCLE) {
+        out->lo_x = cr_sub(x.x, s->radius);
+        out->hi_x = cr_add(x.x, s->radius);
+        out->lo_y = cr_sub(x.y, s->radius);
+        out->hi_y = cr_add(x.y, s->radius);
     } else {
         int i;
-        cr_v2 p = cr_vadd(b->x, cr_rotate(b->q, b->verts[0]));
+        cr_v2 p = cr_vadd(x, cr_rotate(q, s->verts[0]));
         out->lo_x = out->hi_x = p.x;
         out->lo_y = out->hi_y = p.y;
-        for (i = 1; i < b->count; ++i) {
-            p = cr_vadd(b->x, cr_rotate(b->q, b->verts[i]));
+        for (i = 1; i < s->count; ++i) {
+            p = cr_vadd(x, cr_rotate(q, s->verts[i]));
             out->lo_x = cr_min(out->lo_x, p.x);
             out->hi_x = cr_max(out->hi_x, p.x);
             out->lo_y = cr_min(out->lo_y, p.y);
             out->hi_y = cr_max(out->hi_y, p.y);
         }
-        out->lo_x = cr_sub(out->lo_x, margin);
-        out->hi_x = cr_add(out->hi_x, margin);
-        out->lo_y = cr_sub(out->lo_y, margin);
-        out->hi_y = cr_add(out->hi_y, margin);
     }
 }

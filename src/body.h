@@ -1,0 +1,81 @@
+/*
+ * body.h -- bodies: the hot state every step reads and writes, the cold
+ * definition (shape, mass, material) fixed at creation, and the helpers
+ * that read shapes (internal).
+ */
+#ifndef CAROM_BODY_H
+#define CAROM_BODY_H
+
+#include "arith.h"
+
+/* Flags of cr_body.flags */
+#define CR_BODY_ALIVE 1u  /* the slot holds a body */
+#define CR_BODY_AWAKE 2u  /* simulated this step (not asleep) */
+
+/*
+ * Hot state of a body, compact so that the step's loops touch little
+ * memory. A copy of the whole array is kept at the start of each step, so
+ * a failed step can be undone exactly.
+ */
+typedef struct cr_body {
+    cr_v2 x;      /* centre of mass, world */
+    cr_rot q;     /* rotation */
+    cr_v2 v;      /* velocity of the centre of mass */
+    float w;      /* angular velocity */
+    cr_v2 a;      /* acceleration of the forces at the current state (a0) */
+    float alpha;  /* angular acceleration of the torques at the current state */
+#if CAROM_ENABLE_COMPENSATED
+    cr_v2 xc, vc; /* compensation terms of x and v (cr_kadd) */
+#endif
+    float inv_m, inv_I; /* 0 for static and kinematic bodies */
+    float still_time;   /* s the body has been below the sleep speed */
+    unsigned short type;  /* carom_body_type */
+    unsigned short flags; /* CR_BODY_* */
+} cr_body;
+
+/* Geometry, in the body frame with the centre of mass at the origin. */
+typedef struct cr_shape {
+    int kind;           /* carom_shape_type */
+    int count;          /* polygon vertex count */
+    float radius;       /* circle */
+    float extent;       /* largest distance from the centre of mass */
+    float half_width;   /* half the smallest width (circle: the radius) */
+    cr_v2 local_center; /* centre of mass in the definition's frame */
+    cr_v2 verts[CAROM_MAX_POLYGON_VERTICES]; /* counter-clockwise */
+    cr_v2 norms[CAROM_MAX_POLYGON_VERTICES]; /* outward unit edge normals */
+} cr_shape;
+
+/* Cold data: set when the body is made (and by the setters). */
+typedef struct cr_body_info {
+    cr_shape shape;
+    float m, I;                /* mass and inertia (0 if not dynamic) */
+    float restitution, friction;
+    cr_v2 force;               /* constant force at the centre */
+    float torque;              /* constant torque */
+    unsigned generation;       /* of the id that names this slot */
+    int sleep_island;          /* asleep: the island it fell asleep with */
+} cr_body_info;
+
+/* Validate `def` completely and build the body; *hot and *info are
+ * written only on success. */
+carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
+                           cr_body_info *info);
+
+/* Axis-aligned box of the shape at pose (x, q). */
+typedef struct cr_box {
+    float lo_x, lo_y, hi_x, hi_y;
+} cr_box;
+
+void cr_shape_box(const cr_shape *s, cr_v2 x, cr_rot q, cr_box *out);
+
+/* World position of the definition's origin: centre minus rotated offset. */
+cr_v2 cr_body_origin(const cr_body *b, const cr_body_info *info);
+
+/* The acceleration limit check of a force and torque on a body: 0 if
+ * a = F / m or alpha times extent is beyond CAROM_LIMIT_MAX_ACCEL. */
+int cr_accel_in_range(const cr_body_info *info, cr_v2 force, float torque);
+
+/* |x| <= limit for both components, x finite. */
+int cr_v2_within(cr_v2 x, float limit);
+
+#endif /* CAROM_BODY_H */

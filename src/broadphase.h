@@ -1,0 +1,74 @@
+/*
+ * broadphase.h -- candidate pairs: bodies whose boxes overlap (internal).
+ */
+#ifndef CAROM_BROADPHASE_H
+#define CAROM_BROADPHASE_H
+
+#include "body.h"
+
+/* A candidate pair of the step. */
+typedef struct cr_pair {
+    int a, b;      /* body slots, a < b */
+    int contact;   /* this step's contact, or -1 */
+    int next_a, next_b; /* next pair of body a, of body b (lists per body) */
+    int stamp;     /* events: bumped each time toi is recomputed */
+    int va, vb;    /* events: drift versions of a and b it was computed with */
+    int mark;      /* events: island stamp */
+    int met;       /* events: met in this substep; needs a contact */
+    int solved;    /* events: its contact was the solver's when searched */
+    float toi;     /* events: next impact, local step time (CR_NEVER: none) */
+} cr_pair;
+
+/* A body's box in the grid. */
+typedef struct cr_proxy {
+    cr_box box;
+    int body;
+    int cx, cy;    /* cell of the box centre */
+} cr_proxy;
+
+/*
+ * A uniform grid rebuilt every step: cells a little larger than the
+ * typical body, hashed into buckets, filled by a counting sort, so finding
+ * pairs is linear in the bodies whatever their layout (a sweep on one axis
+ * is quadratic in a pile, where everything shares x ranges). Bodies larger
+ * than a cell (walls, floors) are kept apart and tested against the cells
+ * their box covers.
+ */
+typedef struct cr_broadphase {
+    cr_proxy *proxies, *tmp; /* capacity bodies each: grid ones, then big */
+    int *start;              /* bucket_cap + 1 bucket offsets */
+    int *count;              /* capacity + 1: sort counters */
+    int capacity, bucket_cap;
+    int grid_count, big_count, buckets;
+    float cell, inv_cell;
+} cr_broadphase;
+
+/* Memory: bytes of each array for `capacity` bodies (world layout). */
+int cr_broadphase_bucket_cap(int capacity);
+
+/* Put the boxes of bodies[0..n) into the grid. */
+void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
+                         const int *bodies, int n);
+
+/* Decide whether two bodies may pair (static with static never does). */
+typedef int (*cr_pair_accept_fn)(void *ctx, int a, int b);
+
+/* All overlapping pairs the filter accepts, into out[0..cap); returns how
+ * many were found (more than cap: the excess was not stored). */
+long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
+                         cr_pair_accept_fn accept, void *ctx, cr_pair *out,
+                         int cap);
+
+/* Calls fn(ctx, body) for every body in the grid whose box (boxes[]) may
+ * overlap q; returns 0 if fn returned 0 (stop), else 1. */
+typedef int (*cr_query_fn)(void *ctx, int body);
+int cr_broadphase_query(const cr_broadphase *bp, const cr_box *boxes,
+                        const cr_box *q, cr_query_fn fn, void *ctx);
+
+/* Sort pairs by (a, b) in linear time (two counting passes over body
+ * slots); tmp and count as in cr_broadphase. */
+void cr_pairs_sort(cr_pair *pairs, cr_pair *tmp, int n, int *count, int slots);
+
+int cr_boxes_overlap(const cr_box *p, const cr_box *q);
+
+#endif /* CAROM_BROADPHASE_H */

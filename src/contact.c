@@ -1,0 +1,274 @@
+/*
+ * contact.c -- the step's contacts: which candidate pairs are within reach,
+ * their manifolds, their constraint data, and the impulses carried from one
+ * step to the next (warm starting).
+ *
+ * A pair's reach is the speculative distance (a few slops) plus how far the
+ * two bodies can close in during the step (relative speed and spin times
+ * reach, times dt). A contact therefore exists before the surfaces touch,
+ * and the solver can stop them exactly where they meet: no tunnelling
+ * through thin bodies, whether they translate or rotate.
+ *
+ * The anchors (from each centre of mass to the contact point), the normal
+ * and the effective masses are computed once per step at the step's start
+ * pose, and stay fixed through the substeps; only the separation is updated
+ * from the bodies' displacements (solver.c), as in Box2D v3.
+ *
+ * Warm starting: last step's impulses are matched by body pair and feature
+ * id. Both lists are sorted by (a, b), so one merge walk matches them.
+ */
+#include "narrowphase.h"
+#include "world.h"
+
+/* Smallest det(K) / (k11 k22) for which a 2-point manifold is solved as a
+ * block (1 - cos^2 of the angle between the two points' impulse rows). */
+#define CR_BLOCK_MIN_DET 1.0e-3f
+
+static cr_v2 cr_tangent(cr_v2 n) { return cr_vright(n); }
+
+/* Lever arm of an impulse along dir at r from the centre of a body: r x dir,
+ * except for the normal of a circle, where it is 0 by geometry (rounding
+ * would otherwise spin every circle a little at every contact). */
+static float cr_lever(const cr_shape *s, cr_v2 r, cr_v2 dir, int normal)
+{
+    if (normal && s->kind == CAROM_SHAPE_CIRCLE)
+        return 0.0f;
+    return cr_vcross(r, dir);
+}
+
+float cr_effective_mass(const cr_body *A, const cr_body *B, float la, float lb)
+{
+    float k = cr_add(cr_add(A->inv_m, B->inv_m),
+                     cr_add(cr_mul(A->inv_I, cr_mul(la, la)),
+                            cr_mul(B->inv_I, cr_mul(lb, lb))));
+    return cr_gt(k, 0.0f) ? cr_div(1.0f, k) : 0.0f;
+}
+
+cr_v2 cr_point_velocity(cr_v2 v, float w, cr_v2 r)
+{
+    return cr_vadd(v, cr_vcross_sv(w, r));
+}
+
+/* How far two bodies can close in over time h: relative speed, plus each
+ * body's spin times its extent, plus the relative acceleration's h^2 / 2. */
+float cr_pair_reach(const carom_world *w, int a, int b, float h)
+{
+    const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
+    float ea = w->info[a].shape.extent, eb = w->info[b].shape.extent;
+    float speed = cr_add(cr_vlen(cr_vsub(B->v, A->v)),
+                         cr_add(cr_mul(cr_abs(A->w), ea), cr_mul(cr_abs(B->w), eb)));
+    float acc = cr_vlen(cr_vsub(B->a, A->a));
+    return cr_add(w->scale.spec,
+                  cr_add(cr_mul(speed, h), cr_mul(cr_mul(0.5f, acc), cr_mul(h, h))));
+}
+
+/* Constraint data of contact c from manifold m at the bodies' current
+ * poses; impulses start at zero. */
+void cr_contact_from_manifold(const carom_world *w, cr_contact *c,
+                              const cr_manifold *m)
+{
+    const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+    const cr_body_info *ia = &w->info[c->a], *ib = &w->info[c->b];
+    cr_v2 t = cr_tangent(m->n);
+    int k;
+    c->n = m->n;
+    c->count = m->count;
+    c->restitution = cr_max(ia->restitution, ib->restitution);
+#if CAROM_ENABLE_FRICTION
+    c->friction = cr_sqrt(cr_mul(ia->friction, ib->friction));
+#else
+    c->friction = 0.0f;
+#endif
+    c->flags &= ~CR_CONTACT_TOUCHING;
+    for (k = 0; k < m->count; ++k) {
+        cr_contact_point *p = &c->pts[k];
+        const cr_manifold_point *mp = &m->pts[k];
+        float rna, rnb;
+        p->ra = cr_vsub(mp->p, A->x);
+        p->rb = cr_vsub(mp->p, B->x);
+        p->base_sep = cr_sub(mp->sep, cr_vdot(m->n, cr_vsub(p->rb, p->ra)));
+        rna = cr_lever(&ia->shape, p->ra, m->n, 1);
+        rnb = cr_lever(&ib->shape, p->rb, m->n, 1);
+        p->mass_n = cr_effective_mass(A, B, rna, rnb);
+        p->mass_t = cr_effective_mass(A, B, cr_vcross(p->ra, t), cr_vcross(p->rb, t));
+        p->rel_vn = cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
+                                    cr_point_velocity(A->v, A->w, p->ra)),
+                            m->n);
+        p->pn = 0.0f;
+        p->pp = 0.0f;
+        p->pt = 0.0f;
+        p->max_pn = 0.0f;
+        p->id = mp->id;
+        if (cr_le(mp->sep, w->scale.slop))
+            c->flags |= CR_CONTACT_TOUCHING;
+    }
+    c->block = 0;
+    c->k11 = c->k12 = c->k22 = 0.0f;
+    if (m->count == 2) {
+        float l1a = cr_lever(&ia->shape, c->pts[0].ra, m->n, 1);
+        float l1b = cr_lever(&ib->shape, c->pts[0].rb, m->n, 1);
+        float l2a = cr_lever(&ia->shape, c->pts[1].ra, m->n, 1);
+        float l2b = cr_lever(&ib->shape, c->pts[1].rb, m->n, 1);
+        float lin = cr_add(A->inv_m, B->inv_m), det;
+        c->k11 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(l1a, l1a)),
+                                    cr_mul(B->inv_I, cr_mul(l1b, l1b))));
+        c->k22 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(l2a, l2a)),
+                                    cr_mul(B->inv_I, cr_mul(l2b, l2b))));
+        c->k12 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(l1a, l2a)),
+                                    cr_mul(B->inv_I, cr_mul(l1b, l2b))));
+        /* points too close together make K nearly singular: then solve
+         * them one after the other */
+        det = cr_sub(cr_mul(c->k11, c->k22), cr_mul(c->k12, c->k12));
+        c->block = cr_gt(det, cr_mul(CR_BLOCK_MIN_DET, cr_mul(c->k11, c->k22)));
+    }
+}
+
+/* Last step's impulses onto points with the same ids. */
+static void cr_warm_match(cr_contact *c, const cr_warm *wm)
+{
+    int k, l;
+    for (k = 0; k < c->count; ++k)
+        for (l = 0; l < CAROM_MAX_MANIFOLD_POINTS; ++l)
+            if (wm->id[l] == c->pts[k].id) {
+                c->pts[k].pn = wm->pn[l];
+                c->pts[k].pt = wm->pt[l];
+            }
+}
+
+carom_status cr_contacts_build(carom_world *w, float dt)
+{
+    int i, j = 0;
+    w->contact_count = 0;
+    for (i = 0; i < w->pair_count; ++i) {
+        cr_pair *pr = &w->pairs[i];
+        const cr_body *A = &w->bodies[pr->a], *B = &w->bodies[pr->b];
+        cr_manifold m;
+        cr_contact *c;
+        pr->contact = -1;
+        if (!cr_collide(&w->info[pr->a].shape, A->x, A->q, &w->info[pr->b].shape,
+                        B->x, B->q, cr_pair_reach(w, pr->a, pr->b, dt),
+                        w->scale.face_tol, &m))
+            continue;
+        if (w->contact_count >= w->def.max_contacts)
+            return CAROM_ERR_CONTACT_CAPACITY;
+        c = &w->contacts[w->contact_count];
+        c->a = pr->a;
+        c->b = pr->b;
+        c->pair = i;
+        c->flags = 0u;
+        c->reach = cr_pair_reach(w, pr->a, pr->b, dt);
+        cr_contact_from_manifold(w, c, &m);
+        /* warm start: last step's contacts are sorted like the pairs */
+        while (j < w->warm_count &&
+               (w->warm[j].a < c->a || (w->warm[j].a == c->a && w->warm[j].b < c->b)))
+            ++j;
+        if (j < w->warm_count && w->warm[j].a == c->a && w->warm[j].b == c->b)
+            cr_warm_match(c, &w->warm[j]);
+        pr->contact = w->contact_count++;
+    }
+    return CAROM_OK;
+}
+
+int cr_contact_add(carom_world *w, int pair)
+{
+    cr_pair *pr = &w->pairs[pair];
+    const cr_body *A = &w->bodies[pr->a], *B = &w->bodies[pr->b];
+    cr_manifold m;
+    cr_contact *c;
+    float reach = cr_pair_reach(w, pr->a, pr->b, w->def.dt);
+    if (pr->contact >= 0)
+        return pr->contact;
+    if (!cr_collide(&w->info[pr->a].shape, A->x, A->q, &w->info[pr->b].shape,
+                    B->x, B->q, reach, w->scale.face_tol, &m))
+        return -1;
+    if (w->contact_count >= w->def.max_contacts)
+        return -2;
+    c = &w->contacts[w->contact_count];
+    c->a = pr->a;
+    c->b = pr->b;
+    c->pair = pair;
+    c->flags = CR_CONTACT_NEW;
+    c->reach = reach;
+    cr_contact_from_manifold(w, c, &m);
+    /* the solver measures separation from the step start: count the
+     * displacements so far in the base */
+    {
+        const cr_body *A0 = &w->backup[pr->a], *B0 = &w->backup[pr->b];
+        cr_v2 dpa = cr_vsub(A->x, A0->x), dpb = cr_vsub(B->x, B0->x);
+        cr_rot dqa = cr_r(cr_add(cr_mul(A->q.c, A0->q.c), cr_mul(A->q.s, A0->q.s)),
+                          cr_sub(cr_mul(A->q.s, A0->q.c), cr_mul(A->q.c, A0->q.s)));
+        cr_rot dqb = cr_r(cr_add(cr_mul(B->q.c, B0->q.c), cr_mul(B->q.s, B0->q.s)),
+                          cr_sub(cr_mul(B->q.s, B0->q.c), cr_mul(B->q.c, B0->q.s)));
+        int k;
+        for (k = 0; k < c->count; ++k) {
+            cr_contact_point *p = &c->pts[k];
+            cr_v2 d = cr_vsub(cr_vadd(dpb, cr_rotate(dqb, p->rb)),
+                              cr_vadd(dpa, cr_rotate(dqa, p->ra)));
+            p->base_sep = cr_sub(m.pts[k].sep, cr_vdot(c->n, d));
+        }
+    }
+    pr->contact = w->contact_count++;
+    return pr->contact;
+}
+
+/* Keep this step's impulses for the next, in (a, b) order: contacts made
+ * during the step sit at the end of the list, so walk the pairs. */
+void cr_contacts_store(carom_world *w)
+{
+    int i, k, n = 0;
+    for (i = 0; i < w->pair_count; ++i) {
+        const cr_contact *c;
+        cr_warm *wm;
+        if (w->pairs[i].contact < 0)
+            continue;
+        c = &w->contacts[w->pairs[i].contact];
+        wm = &w->warm_next[n++];
+        wm->a = c->a;
+        wm->b = c->b;
+        for (k = 0; k < CAROM_MAX_MANIFOLD_POINTS; ++k) {
+            wm->id[k] = k < c->count ? c->pts[k].id : CR_NO_ID;
+            wm->pn[k] = k < c->count ? c->pts[k].pn : 0.0f;
+            wm->pt[k] = k < c->count ? c->pts[k].pt : 0.0f;
+        }
+    }
+    w->warm_next_count = n;
+}
+
+/*
+ * The 2x2 linear complementarity problem of a 2-point row:
+ *     find x >= 0 with y = K x + b >= 0 and x_i y_i = 0,
+ * K = [k11 k12; k12 k22] symmetric positive definite, by trying its four
+ * cases in turn (both points pushing, only one, none). 0 if none fits
+ * (rounding at a degenerate K).
+ */
+int cr_lcp2(float k11, float k12, float k22, float b1, float b2,
+                   float *x1, float *x2)
+{
+    float det = cr_sub(cr_mul(k11, k22), cr_mul(k12, k12));
+    float y1 = cr_div(cr_sub(cr_mul(k12, b2), cr_mul(k22, b1)), det);
+    float y2 = cr_div(cr_sub(cr_mul(k12, b1), cr_mul(k11, b2)), det);
+    if (cr_ge(y1, 0.0f) && cr_ge(y2, 0.0f)) {
+        *x1 = y1;
+        *x2 = y2;
+        return 1;
+    }
+    y1 = cr_div(cr_neg(b1), k11);
+    if (cr_ge(y1, 0.0f) && cr_ge(cr_add(cr_mul(k12, y1), b2), 0.0f)) {
+        *x1 = y1;
+        *x2 = 0.0f;
+        return 1;
+    }
+    y2 = cr_div(cr_neg(b2), k22);
+    if (cr_ge(y2, 0.0f) && cr_ge(cr_add(cr_mul(k12, y2), b1), 0.0f)) {
+        *x1 = 0.0f;
+        *x2 = y2;
+        return 1;
+    }
+    if (cr_ge(b1, 0.0f) && cr_ge(b2, 0.0f)) {
+        *x1 = 0.0f;
+        *x2 = 0.0f;
+        return 1;
+    }
+    return 0;
+}
+

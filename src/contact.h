@@ -1,0 +1,101 @@
+/*
+ * contact.h -- contacts: pairs of bodies within contact distance, each with
+ * a manifold of up to two points, the solver's constraint data and the
+ * impulses carried from step to step (internal).
+ */
+#ifndef CAROM_CONTACT_H
+#define CAROM_CONTACT_H
+
+#include "body.h"
+
+/* No feature id: a point slot that holds nothing. */
+#define CR_NO_ID 0xffffffffu
+
+/* A manifold as narrowphase computes it at one pose. */
+typedef struct cr_manifold_point {
+    cr_v2 p;        /* world point, midway between the two surfaces */
+    float sep;      /* signed distance along the normal (< 0: overlap) */
+    unsigned id;    /* feature id, the same while the same features touch */
+} cr_manifold_point;
+
+typedef struct cr_manifold {
+    cr_v2 n;        /* unit normal from body a towards body b */
+    int count;      /* 0..CAROM_MAX_MANIFOLD_POINTS */
+    cr_manifold_point pts[CAROM_MAX_MANIFOLD_POINTS];
+} cr_manifold;
+
+/* One point of a contact constraint. */
+typedef struct cr_contact_point {
+    cr_v2 ra, rb;    /* from each centre of mass to the point, world frame,
+                        at the start of the step */
+    float base_sep;  /* separation at the start of the step minus
+                        n.(rb - ra): the current separation is
+                        base_sep + n.(x_b + Rb rb - x_a - Ra ra) */
+    float pn, pt;    /* accumulated normal and tangent impulses */
+    float pp;        /* pseudo-impulse of the position correction */
+    float max_pn;    /* largest normal impulse of the step */
+    float mass_n, mass_t; /* effective masses along n and the tangent */
+    float rel_vn;    /* normal relative velocity at the start of the step */
+    unsigned id;
+} cr_contact_point;
+
+/* Flags of cr_contact.flags */
+#define CR_CONTACT_SOLVE 1u    /* solved by the contact solver this substep
+                                  (not an impact waiting for its instant) */
+#define CR_CONTACT_TOUCHING 2u /* within the linear slop at the step start */
+#define CR_CONTACT_NEW 4u      /* made during the step, after an impact */
+
+typedef struct cr_contact {
+    int a, b;          /* body slots, a < b */
+    int pair;          /* the candidate pair it belongs to */
+    cr_v2 n;           /* unit normal a -> b at the start of the step */
+    int count;
+    unsigned flags;
+    float friction, restitution;
+    float reach;       /* speculative distance of this pair in the step */
+    float k11, k12, k22; /* 2 points: the normal effective-mass matrix K
+                            (inverse); block = 1 if well conditioned */
+    int block;
+    cr_contact_point pts[CAROM_MAX_MANIFOLD_POINTS];
+} cr_contact;
+
+/* Impulses kept from one step to warm-start the next, sorted by (a, b). */
+typedef struct cr_warm {
+    int a, b;
+    unsigned id[CAROM_MAX_MANIFOLD_POINTS];
+    float pn[CAROM_MAX_MANIFOLD_POINTS], pt[CAROM_MAX_MANIFOLD_POINTS];
+} cr_warm;
+
+/* 1 / (1/m_a + 1/m_b + la^2 / I_a + lb^2 / I_b) for lever arms la, lb. */
+float cr_effective_mass(const cr_body *A, const cr_body *B, float la, float lb);
+
+/* Velocity of the material point at r from a centre moving at (v, w). */
+cr_v2 cr_point_velocity(cr_v2 v, float w, cr_v2 r);
+
+/* How far bodies a and b can close in over time h, plus the speculative
+ * distance: the reach of their contact. */
+float cr_pair_reach(const carom_world *w, int a, int b, float h);
+
+/* Constraint data of contact c (a, b set) from manifold m at the bodies'
+ * current poses; impulses start at zero. */
+void cr_contact_from_manifold(const carom_world *w, cr_contact *c,
+                              const cr_manifold *m);
+
+/* The step's contacts from its candidate pairs, warm-started from the last
+ * step's impulses. CAROM_ERR_CONTACT_CAPACITY if they do not fit. */
+carom_status cr_contacts_build(carom_world *w, float dt);
+
+/* A contact for candidate pair `pair` made now (after an impact); its
+ * index, -1 if the pair is out of reach, -2 if the contacts are full. */
+int cr_contact_add(carom_world *w, int pair);
+
+/* The 2x2 linear complementarity problem of a 2-point manifold: x >= 0,
+ * y = K x + b >= 0, x_i y_i = 0, K = [k11 k12; k12 k22] positive definite;
+ * 0 if no case fits (rounding at a nearly singular K). */
+int cr_lcp2(float k11, float k12, float k22, float b1, float b2, float *x1,
+            float *x2);
+
+/* The impulses to warm-start the next step, into w->warm_next. */
+void cr_contacts_store(carom_world *w);
+
+#endif /* CAROM_CONTACT_H */

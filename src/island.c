@@ -1,0 +1,160 @@
+/*
+ * island.c -- islands of touching bodies, and sleep.
+ *
+ * A dynamic body is still while its fastest point, |v| + |w| extent, stays
+ * under the sleep speed (CAROM_SLEEP_SPEED_PER_LENGTH x length unit); its
+ * still time counts up, and resets when it moves. At the end of a step the
+ * bodies linked by touching contacts form islands (union-find over the
+ * step's contacts; static bodies do not link islands); an island whose
+ * every body has been still for the world's sleep_time falls asleep: its
+ * bodies stop, leave the step's work entirely (no box, no contact, no
+ * drift), and remember their island. A sleeping island wakes as a whole
+ * when a moving body reaches one of its bodies, or when the program pushes
+ * one (carom_body_set_force and the other setters). A settled pile then
+ * costs almost nothing.
+ */
+#include "island.h"
+
+void cr_island_awake_list(carom_world *w)
+{
+    int i;
+    w->awake_count = 0;
+    for (i = 0; i < w->slot_count; ++i) {
+        const cr_body *b = &w->bodies[i];
+        if ((b->flags & CR_BODY_ALIVE) && (b->flags & CR_BODY_AWAKE) &&
+            b->type != CAROM_BODY_STATIC)
+            w->awake[w->awake_count++] = i;
+    }
+}
+
+void cr_island_wake(carom_world *w, int slot)
+{
+    int island = w->info[slot].sleep_island, j;
+    cr_body *b = &w->bodies[slot];
+    b->still_time = 0.0f;
+    if (b->flags & CR_BODY_AWAKE)
+        return;
+    b->flags |= CR_BODY_AWAKE;
+    w->info[slot].sleep_island = -1;
+    if (island < 0)
+        return;
+    for (j = 0; j < w->slot_count; ++j) {
+        cr_body *o = &w->bodies[j];
+        if ((o->flags & CR_BODY_ALIVE) && !(o->flags & CR_BODY_AWAKE) &&
+            w->info[j].sleep_island == island) {
+            o->flags |= CR_BODY_AWAKE;
+            o->still_time = 0.0f;
+            w->info[j].sleep_island = -1;
+        }
+    }
+}
+
+static int cr_asleep(const cr_body *b)
+{
+    return b->type == CAROM_BODY_DYNAMIC && !(b->flags & CR_BODY_AWAKE);
+}
+
+static int cr_restless(const carom_world *w, const cr_body *b)
+{
+    return b->type != CAROM_BODY_STATIC && (b->flags & CR_BODY_AWAKE) &&
+           cr_lt(b->still_time, w->def.sleep_time);
+}
+
+int cr_island_wake_touched(carom_world *w)
+{
+    int i, woke = 0;
+    for (i = 0; i < w->pair_count; ++i) {
+        const cr_pair *p = &w->pairs[i];
+        const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
+        if (cr_asleep(A) && cr_restless(w, B)) {
+            cr_island_wake(w, p->a);
+            woke = 1;
+        } else if (cr_asleep(B) && cr_restless(w, A)) {
+            cr_island_wake(w, p->b);
+            woke = 1;
+        }
+    }
+    return woke;
+}
+
+static int cr_kinematic_moving(const cr_body *b)
+{
+    return b->type == CAROM_BODY_KINEMATIC &&
+           (!cr_eq(b->v.x, 0.0f) || !cr_eq(b->v.y, 0.0f) || !cr_eq(b->w, 0.0f));
+}
+
+static int cr_find(int *parent, int i)
+{
+    while (parent[i] != i) {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    return i;
+}
+
+void cr_island_sleep(carom_world *w, float dt)
+{
+#if CAROM_ENABLE_SLEEP
+    int *parent = w->regrown;   /* scratch at the end of the step */
+    int *can_sleep = w->pair_head;
+    int i;
+    if (!w->def.enable_sleep)
+        return;
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        cr_body *b = &w->bodies[id];
+        float speed = cr_add(cr_vlen(b->v),
+                             cr_mul(cr_abs(b->w), w->info[id].shape.extent));
+        if (b->type != CAROM_BODY_DYNAMIC || cr_gt(speed, w->scale.sleep_speed))
+            b->still_time = 0.0f;
+        else
+            b->still_time = cr_add(b->still_time, dt);
+        parent[id] = id;
+    }
+    for (i = 0; i < w->contact_count; ++i) {
+        const cr_contact *c = &w->contacts[i];
+        const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+        int ra, rb;
+        if (!(c->flags & CR_CONTACT_TOUCHING))
+            continue;
+        /* a body carried by a moving kinematic body never sleeps */
+        if (cr_kinematic_moving(A))
+            w->bodies[c->b].still_time = 0.0f;
+        if (cr_kinematic_moving(B))
+            w->bodies[c->a].still_time = 0.0f;
+        if (A->type != CAROM_BODY_DYNAMIC || B->type != CAROM_BODY_DYNAMIC)
+            continue;
+        ra = cr_find(parent, c->a);
+        rb = cr_find(parent, c->b);
+        if (ra != rb)
+            parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
+    }
+    for (i = 0; i < w->awake_count; ++i)
+        can_sleep[w->awake[i]] = 1;
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i];
+        const cr_body *b = &w->bodies[id];
+        if (b->type != CAROM_BODY_DYNAMIC || cr_lt(b->still_time, w->def.sleep_time))
+            can_sleep[cr_find(parent, id)] = 0;
+    }
+    for (i = 0; i < w->awake_count; ++i) {
+        int id = w->awake[i], root;
+        cr_body *b = &w->bodies[id];
+        if (b->type != CAROM_BODY_DYNAMIC)
+            continue;
+        root = cr_find(parent, id);
+        if (!can_sleep[root])
+            continue;
+        b->flags &= (unsigned short)~CR_BODY_AWAKE;
+        b->v = cr_v(0.0f, 0.0f);
+        b->w = 0.0f;
+#if CAROM_ENABLE_COMPENSATED
+        b->vc = cr_v(0.0f, 0.0f);
+#endif
+        w->info[id].sleep_island = root;
+    }
+#else
+    (void)w;
+    (void)dt;
+#endif
+}

@@ -1,0 +1,65 @@
+/*
+ * solver.h -- the contact solver's passes over a substep (internal).
+ */
+#ifndef CAROM_SOLVER_H
+#define CAROM_SOLVER_H
+
+#include "world.h"
+
+typedef struct cr_substep {
+    float h, inv_h;
+    float push;              /* largest push-out speed */
+} cr_substep;
+
+void cr_substep_init(cr_substep *s, const carom_world *w, float h);
+
+/* Start of the step: no displacement yet. */
+void cr_solver_begin(carom_world *w);
+
+/*
+ * Start of a substep: decide which contacts the solver takes (all of them
+ * in the discrete method; in the events methods those not approaching
+ * faster than the rest speed: the others are impacts, taken at their
+ * instant) and mark their bodies active. Returns the number of contacts
+ * solved.
+ */
+int cr_solver_classify(carom_world *w, int events);
+
+/* Cold start (bodies were added): estimate the support impulses of the
+ * contacts that have no warm start from the weights they carry. */
+void cr_solver_prime(carom_world *w, const cr_substep *s);
+
+/* Active bodies: remember the substep's start velocity, add the forces'
+ * kick a h, and re-apply the contacts' accumulated impulses. */
+void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s);
+
+/* Velocity sweeps over the solved contacts; `first`: the sweeps before the
+ * bodies move (the speculative target uses the substep's start velocity). */
+void cr_solver_solve(carom_world *w, const cr_substep *s, int first,
+                     int iterations);
+
+/* Position sweeps: remove a fraction of the overlap left after the move,
+ * on positions only. */
+void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations);
+
+/* Active bodies: turn the solved velocity into the substep's drift
+ * (constant acceleration from the start velocity to it), velocity back to
+ * the start of the substep. */
+void cr_solver_set_drifts(carom_world *w, const cr_substep *s);
+
+/* Active bodies: displacement and rotation since the start of the step,
+ * after they moved. */
+void cr_solver_update_deltas(carom_world *w);
+
+/* Discrete method, end of step: Newton restitution for the contacts that
+ * were hit faster than the rest speed. Returns how many points bounced. */
+int cr_solver_restitution(carom_world *w);
+
+/* Fastest normal approach of contact c's points at the bodies' current
+ * velocities (>= 0). */
+float cr_contact_approach(const carom_world *w, const cr_contact *c);
+
+/* The approach speed above which contact (a, b) is an impact. */
+float cr_rest_speed(const carom_world *w, int a, int b);
+
+#endif /* CAROM_SOLVER_H */

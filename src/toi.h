@@ -1,0 +1,52 @@
+/*
+ * toi.h -- time of impact of two bodies on their drifts (internal).
+ */
+#ifndef CAROM_TOI_H
+#define CAROM_TOI_H
+
+#include "integrate.h"
+
+/* A body on its drift: what the time of impact reads. */
+typedef struct cr_mover {
+    const cr_shape *s;
+    const cr_body *b;
+    const cr_drift *d;
+} cr_mover;
+
+/* Earliest s in [0, hi] with c0 + c1 s + c2 s^2 = 0 where the function is
+ * decreasing (an approach, not a graze or a separation); needs c0 > 0.
+ * Returns 0 if none (also for non-finite coefficients). */
+int cr_first_down_root2(float c0, float c1, float c2, float hi, float *out);
+
+/* Earliest root of c0 + c1 s + ... + c4 s^4 in [0, hi], c0 > 0; bounded
+ * work and storage whatever the input (non-finite: no root). May return
+ * an instant before the root (never after) when its budget runs out. */
+int cr_first_root4(const float c[5], float hi, float *out);
+
+/* The box a body's shape sweeps over local times [t0, t1], grown by
+ * margin. */
+void cr_swept_box(const cr_mover *m, float t0, float t1, float margin,
+                  cr_box *out);
+
+/* The note's early-out: 1 if the bodies' bounding circles cannot meet over
+ * [t0, t1] (their centres' distance at the time of closest approach,
+ * minus what acceleration can bend, exceeds their extents plus margin). */
+int cr_cannot_meet(const cr_mover *A, const cr_mover *B, float t0, float t1,
+                   float margin);
+
+/* Fastest normal approach of A and B at local time t over the points of
+ * their manifold within `reach` (0 if none), and in *scale the speed scale
+ * of the pair (linear speeds plus spin times extent). */
+float cr_approach_speed(const cr_mover *A, const cr_mover *B, float t,
+                        float reach, float *scale);
+
+/*
+ * First instant in [t0, t1] (local step time) at which A and B, apart at
+ * t0, come within `tol` of touching while approaching. Exact closed forms
+ * for non-rotating pairs; conservative advancement (never past the impact)
+ * when a polygon rotates. Returns 1 and the time in *toi.
+ */
+int cr_time_of_impact(const cr_mover *A, const cr_mover *B, float t0, float t1,
+                      float tol, float *toi);
+
+#endif /* CAROM_TOI_H */

@@ -1,0 +1,136 @@
+/*
+ * world.h -- the world: every array lives in the caller's buffer, laid out
+ * once by world.c (internal).
+ *
+ * The step (world.c, carom_world_step) runs these stages, each in its own
+ * module:
+ *   broadphase.c   candidate pairs from the bodies' swept boxes (a grid)
+ *   contact.c      contacts: manifolds (narrowphase.c) of the pairs within
+ *                  reach, impulses carried over from the last step
+ *   solver.c       the contact solver's substeps: soft push-out, relax,
+ *                  restitution (discrete method)
+ *   events.c       between the solver's passes: bodies drift, impacts at
+ *                  their instants in time order (toi.c), simultaneous ones
+ *                  solved together
+ *   integrate.c    drifts and the Verlet finish
+ *   island.c       islands of touching bodies, sleeping
+ */
+#ifndef CAROM_WORLD_H
+#define CAROM_WORLD_H
+
+#include "body.h"
+#include "broadphase.h"
+#include "contact.h"
+#include "integrate.h"
+#include "profile.h"
+
+/* Per-body scratch of the contact solver. */
+typedef struct cr_solver_body {
+    cr_v2 v0;   /* velocity at the start of the substep */
+    float w0;
+    cr_v2 dp;   /* displacement since the start of the step */
+    cr_rot dq;  /* rotation since the start of the step */
+    cr_v2 vp;   /* pseudo-velocity of the position correction */
+    float wp;
+    float load; /* priming: weight carried, as an impulse per substep */
+    int active; /* has a contact solved this substep */
+} cr_solver_body;
+
+/* An entry of the impact queue: a pair's next impact as computed when the
+ * pair's stamp was `stamp`. */
+typedef struct cr_heap_entry {
+    float t;
+    int pair;
+    int stamp;
+} cr_heap_entry;
+
+/* A contact of a simultaneous impact solve (events.c). */
+typedef struct cr_impact_row {
+    int a, b;        /* body slots */
+    int pair;        /* candidate pair */
+    cr_v2 n;
+    int count;
+    float friction, restitution;
+    cr_v2 ra[CAROM_MAX_MANIFOLD_POINTS], rb[CAROM_MAX_MANIFOLD_POINTS];
+    float mass_n[CAROM_MAX_MANIFOLD_POINTS], mass_t[CAROM_MAX_MANIFOLD_POINTS];
+    float target[CAROM_MAX_MANIFOLD_POINTS]; /* normal velocity aimed for */
+    float approach;                          /* fastest approach before */
+    float pn[CAROM_MAX_MANIFOLD_POINTS], pt[CAROM_MAX_MANIFOLD_POINTS];
+    int impact;      /* approaching faster than the rest speed */
+} cr_impact_row;
+
+/* The scale the tolerances follow (carom_config.h). */
+typedef struct cr_scale {
+    float length;     /* length unit, m */
+    float slop;       /* m */
+    float spec;       /* speculative distance, m */
+    float push;       /* largest push-out speed, m/s */
+    float face_tol;   /* polygon reference face tolerance, m */
+    float sleep_speed;/* m/s */
+} cr_scale;
+
+struct carom_world {
+    carom_world_def def;    /* capacities resolved */
+    carom_method method;
+    long steps;
+
+    /* bodies */
+    cr_body *bodies, *backup; /* hot state, and its copy at the step start */
+    cr_body_info *info;
+    int slot_count;           /* slots ever used */
+    int body_count;           /* bodies alive */
+    int prime;                /* bodies were added: the next step has no
+                                 warm start, so it solves longer */
+
+    /* per step */
+    cr_scale scale;
+    int *awake;               /* slots simulated this step */
+    int awake_count;
+    cr_box *boxes;            /* each body's box over the step */
+    cr_broadphase bp;
+    cr_pair *pairs, *pair_tmp;
+    int pair_count;
+    int *pair_head;           /* per body: its first pair (cr_pair.next_*) */
+    cr_contact *contacts;
+    int contact_count;
+    cr_warm *warm, *warm_next;/* impulses of the last step; of this one */
+    int warm_count, warm_next_count;
+    cr_solver_body *sbody;
+    int *solve_order;         /* the contacts the solver takes, in order */
+    int solve_count;
+
+    /* events methods */
+    cr_drift *drift;
+    cr_heap_entry *heap;
+    int heap_count, heap_cap;
+    int *mark;                /* per body: island membership stamp */
+    int mark_stamp;
+    int *island;              /* bodies of an impact island */
+    cr_v2 *island_v;          /* their velocities just after the impact */
+    float *island_w;
+    int island_cap;
+    int *regrown;             /* bodies whose box grew during the step */
+    int regrown_count;
+    cr_impact_row *rows;      /* contacts of an impact island */
+    int row_cap;
+    int impacts_this_step;
+    int budget_hit;
+
+    /* results */
+    carom_event *events;
+    int event_count, events_dropped;
+    carom_stats stats;
+    int error_body;
+
+    carom_profile *profile;   /* attached counters, or NULL */
+};
+
+/* A body's id: its slot and the slot's generation. */
+int cr_body_id(const carom_world *w, int slot);
+
+/* Count an impact of bodies a and b at local step time t, and record it
+ * in the event list if there is room (else count it as dropped). */
+void cr_record_impact(carom_world *w, int a, int b, float t, cr_v2 n,
+                      float impulse, float approach);
+
+#endif /* CAROM_WORLD_H */
