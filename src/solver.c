@@ -363,6 +363,8 @@ static float cr_pseudo_vn(carom_world *w, const cr_contact *c, int k)
     return cr_point_vn(sa->vp, sa->wp, sb->vp, sb->wp, c, &c->pts[k]);
 }
 
+static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap);
+
 void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
 {
     int it, i, k;
@@ -401,6 +403,7 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
                     c->pts[k].pp = acc[k];
             }
         }
+    cr_correct_shock(w, s, cap);
     /* move along the pseudo-velocities, then forget them */
     for (i = 0; i < w->awake_count; ++i) {
         int id = w->awake[i];
@@ -501,77 +504,110 @@ static float cr_lift(const cr_contact *c, int lower, cr_v2 up)
  * of the vertical. */
 #define CR_SUPPORT_COS 0.5f
 
-/*
- * Support impulses from the weights (Guendelman et al.'s shock propagation,
- * used only to start the solver): order the bodies up from those resting on
- * static bodies along the supporting contacts (breadth first), then walk
- * that order down: each body hands its weight, plus what it carries, to
- * the contacts beneath it, shared equally among them and between the two
- * points of a face by the lever rule. Exact for a column, close for a
- * pyramid or a pile; the velocity sweeps correct the rest. Contacts that
- * already have an impulse from the last step keep it.
- */
-void cr_solver_prime(carom_world *w, const cr_substep *s)
+/* Is contact c (touching) a support of body `upper` by the other body
+ * `lower` (static, kinematic, or lower in the support order)? */
+static int cr_supports(const cr_contact *c, int lower, cr_v2 up)
+{
+    return (c->flags & CR_CONTACT_TOUCHING) && cr_gt(cr_lift(c, lower, up), CR_SUPPORT_COS);
+}
+
+static int cr_up(const carom_world *w, cr_v2 *up)
 {
     float g = cr_vlen(w->def.gravity);
-    int *queue = w->regrown, *pos = w->mark;
-    int n = 0, head, i, k;
-    cr_v2 up;
     if (!cr_gt(g, 0.0f))
-        return;
-    up = cr_vscale(cr_div(-1.0f, g), w->def.gravity);
+        return 0;
+    *up = cr_vscale(cr_div(-1.0f, g), w->def.gravity);
+    return 1;
+}
+
+/*
+ * Support order: the bodies resting on static (or kinematic) bodies are
+ * level 0, those resting on them level 1, and so on (breadth first over
+ * touching contacts whose normal is within 60 degrees of the vertical). No
+ * gravity, no order.
+ */
+void cr_solver_levels(carom_world *w)
+{
+    int *queue = w->support, n = 0, head, i, k;
+    cr_v2 up;
     for (i = 0; i < w->slot_count; ++i)
-        pos[i] = -1;
-    /* seeds: bodies resting on a static or kinematic body, in slot order */
+        w->sbody[i].level = -1;
+    w->support_count = 0;
+    if (!cr_up(w, &up))
+        return;
     for (i = 0; i < w->contact_count; ++i) {
         const cr_contact *c = &w->contacts[i];
         int a = c->a, b = c->b;
-        if (!(c->flags & CR_CONTACT_TOUCHING))
-            continue;
         if (w->bodies[a].type != CAROM_BODY_DYNAMIC && w->bodies[b].type == CAROM_BODY_DYNAMIC &&
-            pos[b] < 0 && cr_gt(cr_lift(c, a, up), CR_SUPPORT_COS)) {
-            pos[b] = n;
+            w->sbody[b].level < 0 && cr_supports(c, a, up)) {
+            w->sbody[b].level = 0;
             queue[n++] = b;
         } else if (w->bodies[b].type != CAROM_BODY_DYNAMIC &&
-                   w->bodies[a].type == CAROM_BODY_DYNAMIC && pos[a] < 0 &&
-                   cr_gt(cr_lift(c, b, up), CR_SUPPORT_COS)) {
-            pos[a] = n;
+                   w->bodies[a].type == CAROM_BODY_DYNAMIC && w->sbody[a].level < 0 &&
+                   cr_supports(c, b, up)) {
+            w->sbody[a].level = 0;
             queue[n++] = a;
         }
     }
-    /* breadth first, up through supporting contacts */
     for (head = 0; head < n; ++head) {
         int u = queue[head];
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];
             int v = p->a == u ? p->b : p->a, next = p->a == u ? p->next_a : p->next_b;
-            if (p->contact >= 0 && pos[v] < 0 && w->bodies[v].type == CAROM_BODY_DYNAMIC) {
-                const cr_contact *c = &w->contacts[p->contact];
-                if ((c->flags & CR_CONTACT_TOUCHING) && cr_gt(cr_lift(c, u, up), CR_SUPPORT_COS)) {
-                    pos[v] = n;
-                    queue[n++] = v;
-                }
+            if (p->contact >= 0 && w->sbody[v].level < 0 &&
+                w->bodies[v].type == CAROM_BODY_DYNAMIC &&
+                cr_supports(&w->contacts[p->contact], u, up)) {
+                w->sbody[v].level = w->sbody[u].level + 1;
+                queue[n++] = v;
             }
             k = next;
         }
     }
-    for (i = 0; i < n; ++i) {
-        int u = queue[i];
+    w->support_count = n;
+}
+
+/* Does the contact through pair p support body u (from a body below)? */
+static int cr_support_of(const carom_world *w, const cr_pair *p, int u, cr_v2 up)
+{
+    int v = p->a == u ? p->b : p->a;
+    if (p->contact < 0)
+        return 0;
+    if (w->bodies[v].type == CAROM_BODY_DYNAMIC &&
+        (w->sbody[v].level < 0 || w->sbody[v].level >= w->sbody[u].level))
+        return 0;
+    return cr_supports(&w->contacts[p->contact], v, up);
+}
+
+/*
+ * Support impulses from the weights (Guendelman et al.'s shock propagation,
+ * used only to start the solver): walk the support order down: each body
+ * hands its weight, plus what it carries, to the contacts beneath it,
+ * shared equally among them and between the two points of a face by the
+ * lever rule. Exact for a column, close for a pyramid or a pile; the
+ * velocity sweeps correct the rest. Contacts that already have an impulse
+ * from the last step keep it.
+ */
+void cr_solver_prime(carom_world *w, const cr_substep *s)
+{
+    float g = cr_vlen(w->def.gravity);
+    int i, k;
+    cr_v2 up;
+#ifdef CR_DEBUG_NO_PRIME
+    return;
+#endif
+    if (!cr_up(w, &up))
+        return;
+    for (i = 0; i < w->support_count; ++i) {
+        int u = w->support[i];
         w->sbody[u].load = cr_mul(cr_mul(w->info[u].m, g), s->h);
     }
-    /* down again: every body hands its load to its supports */
-    for (i = n - 1; i >= 0; --i) {
-        int u = queue[i], supports = 0;
+    for (i = w->support_count - 1; i >= 0; --i) {
+        int u = w->support[i], supports = 0;
         float share;
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];
-            int v = p->a == u ? p->b : p->a, next = p->a == u ? p->next_a : p->next_b;
-            if (p->contact >= 0 && (w->bodies[v].type != CAROM_BODY_DYNAMIC || (pos[v] >= 0 && pos[v] < i))) {
-                const cr_contact *c = &w->contacts[p->contact];
-                if ((c->flags & CR_CONTACT_TOUCHING) && cr_gt(cr_lift(c, v, up), CR_SUPPORT_COS))
-                    ++supports;
-            }
-            k = next;
+            supports += cr_support_of(w, p, u, up);
+            k = p->a == u ? p->next_a : p->next_b;
         }
         if (supports == 0)
             continue;
@@ -579,36 +615,200 @@ void cr_solver_prime(carom_world *w, const cr_substep *s)
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];
             int v = p->a == u ? p->b : p->a, next = p->a == u ? p->next_a : p->next_b;
-            if (p->contact >= 0 && (w->bodies[v].type != CAROM_BODY_DYNAMIC || (pos[v] >= 0 && pos[v] < i))) {
+            if (cr_support_of(w, p, u, up)) {
                 cr_contact *c = &w->contacts[p->contact];
-                float lift = cr_lift(c, v, up);
-                if ((c->flags & CR_CONTACT_TOUCHING) && cr_gt(lift, CR_SUPPORT_COS)) {
-                    float total = cr_div(share, lift);
-                    int warm = 0, j;
-                    for (j = 0; j < c->count; ++j)
-                        warm |= !cr_eq(c->pts[j].pn, 0.0f);
-                    if (!warm && c->count == 2) {
-                        /* lever rule about u's centre along the face */
-                        cr_v2 t = cr_vright(c->n);
-                        float d1 = cr_vdot(u == c->a ? c->pts[0].ra : c->pts[0].rb, t);
-                        float d2 = cr_vdot(u == c->a ? c->pts[1].ra : c->pts[1].rb, t);
-                        float span = cr_sub(d2, d1);
-                        float f1 = cr_gt(cr_abs(span), 0.0f)
-                                       ? cr_clamp(cr_div(d2, span), 0.0f, 1.0f) : 0.5f;
-                        c->pts[0].pn = cr_mul(total, f1);
-                        c->pts[1].pn = cr_mul(total, cr_sub(1.0f, f1));
-                    } else if (!warm) {
-                        c->pts[0].pn = total;
-                    }
-                    if (w->bodies[v].type == CAROM_BODY_DYNAMIC)
-                        w->sbody[v].load = cr_add(w->sbody[v].load, share);
+                float total = cr_div(share, cr_lift(c, v, up));
+                int warm = 0, j;
+                for (j = 0; j < c->count; ++j)
+                    warm |= !cr_eq(c->pts[j].pn, 0.0f);
+                if (!warm && c->count == 2) {
+                    /* lever rule about u's centre along the face */
+                    cr_v2 t = cr_vright(c->n);
+                    float d1 = cr_vdot(u == c->a ? c->pts[0].ra : c->pts[0].rb, t);
+                    float d2 = cr_vdot(u == c->a ? c->pts[1].ra : c->pts[1].rb, t);
+                    float span = cr_sub(d2, d1);
+                    float f1 = cr_gt(cr_abs(span), 0.0f)
+                                   ? cr_clamp(cr_div(d2, span), 0.0f, 1.0f) : 0.5f;
+                    c->pts[0].pn = cr_mul(total, f1);
+                    c->pts[1].pn = cr_mul(total, cr_sub(1.0f, f1));
+                } else if (!warm) {
+                    c->pts[0].pn = total;
+                }
+                if (w->bodies[v].type == CAROM_BODY_DYNAMIC)
+                    w->sbody[v].load = cr_add(w->sbody[v].load, share);
+            }
+            k = next;
+        }
+    }
+}
+
+/*
+ * Shock propagation (Guendelman, Bridson, Fedkiw 2003): one more velocity
+ * sweep, up the support order, in which every supporting contact is solved
+ * as if the body below could not move. A support then always has the last
+ * word on what rests on it, whatever the mass ratio: Gauss-Seidel alone
+ * needs about m_heavy / m_light sweeps to stop a heavy box on a light one.
+ * Only contacts whose normal is within 60 degrees of the vertical, between
+ * supported bodies, take part, and only to stop an approach; the body
+ * below is not pushed back (its own support, solved before, has stopped
+ * it: the floor takes the reaction), and the impulse is not kept for the
+ * warm start, which stays the load the sweeps found.
+ */
+/* Impulses x >= 0 on body u alone (the body below held fixed) at the
+ * points of contact c, removing the velocity errors err[] (> 0 where the
+ * point still sinks): a 2-point face as one 2x2 problem, so the body is
+ * stopped level, without spin. Returns the count of points (0: nothing). */
+static int cr_one_sided(const carom_world *w, const cr_contact *c, int u,
+                        const float *err, float *x)
+{
+    const cr_body *U = &w->bodies[u];
+    float l[CAROM_MAX_MANIFOLD_POINTS], kk[CAROM_MAX_MANIFOLD_POINTS];
+    int j, any = 0;
+    for (j = 0; j < c->count; ++j) {
+        cr_v2 r = u == c->b ? c->pts[j].rb : c->pts[j].ra;
+        l[j] = cr_normal_lever(w, u, r, c->n);
+        kk[j] = cr_add(U->inv_m, cr_mul(U->inv_I, cr_mul(l[j], l[j])));
+        x[j] = 0.0f;
+        any |= cr_gt(err[j], 0.0f) && cr_gt(kk[j], 0.0f);
+    }
+    if (!any)
+        return 0;
+    if (c->count == 2) {
+        float k12 = cr_add(U->inv_m, cr_mul(U->inv_I, cr_mul(l[0], l[1])));
+        float det = cr_sub(cr_mul(kk[0], kk[1]), cr_mul(k12, k12));
+        if (cr_gt(det, cr_mul(1.0e-3f, cr_mul(kk[0], kk[1]))) &&
+            cr_lcp2(kk[0], k12, kk[1], cr_neg(err[0]), cr_neg(err[1]), &x[0], &x[1]))
+            return 2;
+    }
+    for (j = 0; j < c->count; ++j)
+        x[j] = cr_gt(kk[j], 0.0f) ? cr_max(0.0f, cr_div(err[j], kk[j])) : 0.0f;
+    return c->count == 2 ? 1 : c->count; /* sequential fallback: approximate */
+}
+
+/* Apply impulse x along the normal, upwards, at point j to body u alone:
+ * to its velocity (pseudo = 0) or its pseudo-velocity. */
+static void cr_push_up(carom_world *w, const cr_contact *c, int u, int j, float x,
+                       int pseudo)
+{
+    cr_body *U = &w->bodies[u];
+    cr_solver_body *su = &w->sbody[u];
+    float sign = u == c->b ? 1.0f : -1.0f;
+    cr_v2 r = u == c->b ? c->pts[j].rb : c->pts[j].ra;
+    float lever = cr_normal_lever(w, u, r, c->n);
+    cr_v2 dv = cr_vscale(cr_mul(cr_mul(sign, x), U->inv_m), c->n);
+    float dw = cr_mul(cr_mul(sign, U->inv_I), cr_mul(lever, x));
+    if (pseudo) {
+        su->vp = cr_vadd(su->vp, dv);
+        su->wp = cr_add(su->wp, dw);
+    } else {
+        U->v = cr_vadd(U->v, dv);
+#if CAROM_ENABLE_ROTATION
+        U->w = cr_add(U->w, dw);
+#endif
+    }
+#if !CAROM_ENABLE_ROTATION
+    (void)dw;
+#endif
+}
+
+void cr_solver_shock(carom_world *w, const cr_substep *s)
+{
+    int i, k, j;
+    cr_v2 up;
+#ifdef CR_DEBUG_NO_SHOCK
+    return;
+#endif
+    if (!cr_up(w, &up))
+        return;
+    for (i = 0; i < w->support_count; ++i) {
+        int u = w->support[i];
+        for (k = w->pair_head[u]; k >= 0;) {
+            const cr_pair *p = &w->pairs[k];
+            int next = p->a == u ? p->next_a : p->next_b;
+            if (cr_support_of(w, p, u, up) &&
+                (w->contacts[p->contact].flags & CR_CONTACT_SOLVE)) {
+                const cr_contact *c = &w->contacts[p->contact];
+                const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
+                const cr_body *U = &w->bodies[u];
+                const cr_body *L = &w->bodies[u == c->b ? c->a : c->b];
+                float sign = u == c->b ? 1.0f : -1.0f;
+                float err[CAROM_MAX_MANIFOLD_POINTS], x[CAROM_MAX_MANIFOLD_POINTS];
+                int n;
+                for (j = 0; j < c->count; ++j) {
+                    const cr_contact_point *cp = &c->pts[j];
+                    cr_v2 ru = u == c->b ? cp->rb : cp->ra;
+                    cr_v2 rl = u == c->b ? cp->ra : cp->rb;
+                    float sep = cr_current_sep(c, cp, sa, sb);
+                    float bias = cr_gt(sep, 0.0f) ? cr_mul(sep, s->inv_h) : 0.0f;
+                    /* point velocities along the normal, from below up */
+                    float vu = cr_mul(sign, cr_vdot(cr_point_velocity(U->v, U->w, ru), c->n));
+                    float vl = cr_mul(sign, cr_vdot(cr_point_velocity(L->v, L->w, rl), c->n));
+                    /* stop a sinking body, never lift one: a support moving
+                     * up is no reason to push what rests on it (that would
+                     * be momentum from nowhere) */
+                    err[j] = cr_neg(cr_add(cr_sub(vu, cr_min(vl, 0.0f)), bias));
+                }
+                n = cr_one_sided(w, c, u, err, x);
+                for (j = 0; j < n; ++j)
+                    cr_push_up(w, c, u, j, x[j], 0);
+                if (n == 1 && c->count == 2) {
+                    /* sequential: the second point after the first */
+                    const cr_contact_point *cp = &c->pts[1];
+                    cr_v2 ru = u == c->b ? cp->rb : cp->ra;
+                    cr_v2 rl = u == c->b ? cp->ra : cp->rb;
+                    float vu = cr_mul(sign, cr_vdot(cr_point_velocity(U->v, U->w, ru), c->n));
+                    float vl = cr_mul(sign, cr_vdot(cr_point_velocity(L->v, L->w, rl), c->n));
+                    float e2 = cr_neg(cr_sub(vu, cr_min(vl, 0.0f)));
+                    float e[2], y[2];
+                    e[0] = 0.0f;
+                    e[1] = e2;
+                    if (cr_one_sided(w, c, u, e, y))
+                        cr_push_up(w, c, u, 1, y[1], 0);
                 }
             }
             k = next;
         }
     }
-    /* the stamps of events.c must not meet these positions */
-    for (i = 0; i < w->slot_count; ++i)
-        pos[i] = 0;
-    w->mark_stamp = 0;
+}
+
+/* The position sweep's shock propagation: up the support order, what
+ * overlap a supported body still has with what is below it is removed by
+ * moving it alone (a heavy box is lifted out of a light one instead of
+ * pressing the light one into the floor). */
+static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap)
+{
+    int i, k, j;
+    cr_v2 up;
+#ifdef CR_DEBUG_NO_SHOCK
+    return;
+#endif
+    if (!cr_up(w, &up))
+        return;
+    for (i = 0; i < w->support_count; ++i) {
+        int u = w->support[i];
+        for (k = w->pair_head[u]; k >= 0;) {
+            const cr_pair *p = &w->pairs[k];
+            int next = p->a == u ? p->next_a : p->next_b;
+            if (cr_support_of(w, p, u, up) &&
+                (w->contacts[p->contact].flags & CR_CONTACT_SOLVE)) {
+                const cr_contact *c = &w->contacts[p->contact];
+                const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
+                float sign = u == c->b ? 1.0f : -1.0f;
+                float err[CAROM_MAX_MANIFOLD_POINTS], x[CAROM_MAX_MANIFOLD_POINTS];
+                int n;
+                for (j = 0; j < c->count; ++j) {
+                    float sep = cr_current_sep(c, &c->pts[j], sa, sb);
+                    float fix = cr_min(cr_mul(CAROM_POSITION_CORRECTION, cr_neg(sep)), cap);
+                    float target = cr_mul(cr_max(fix, 0.0f), s->inv_h);
+                    /* what the pseudo-velocities already lift, seen from u */
+                    float vn = cr_mul(sign, cr_pseudo_vn(w, c, j));
+                    err[j] = cr_gt(fix, 0.0f) ? cr_sub(target, cr_mul(sign, vn)) : 0.0f;
+                }
+                n = cr_one_sided(w, c, u, err, x);
+                for (j = 0; j < n; ++j)
+                    cr_push_up(w, c, u, j, x[j], 1);
+            }
+            k = next;
+        }
+    }
 }

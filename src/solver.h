@@ -25,6 +25,14 @@ void cr_solver_begin(carom_world *w);
  */
 int cr_solver_classify(carom_world *w, int events);
 
+/* Start of the step: the support order of the bodies (levels up from the
+ * static ones, along the touching contacts; none without gravity). */
+void cr_solver_levels(carom_world *w);
+
+/* After the relax sweeps: one sweep up the support order with every
+ * supporting body below held fixed (shock propagation). */
+void cr_solver_shock(carom_world *w, const cr_substep *s);
+
 /* Cold start (bodies were added): estimate the support impulses of the
  * contacts that have no warm start from the weights they carry. */
 void cr_solver_prime(carom_world *w, const cr_substep *s);

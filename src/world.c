@@ -136,8 +136,8 @@ static void cr_caps_of(const carom_world_def *d, cr_caps *c)
 typedef struct cr_layout {
     size_t world, bodies, backup, info, boxes, awake, sbody, drift, mark, island,
         island_v, island_w, regrown, pair_head, proxies, ptmp, start, count,
-        pairs, pair_tmp, contacts, solve_order, warm, warm_next, heap, rows, events,
-        total;
+        pairs, pair_tmp, contacts, solve_order, support, warm, warm_next, heap, rows,
+        events, total;
 } cr_layout;
 
 static size_t cr_round_up(size_t n) { return (n + CR_ALIGN - 1u) & ~(size_t)(CR_ALIGN - 1u); }
@@ -179,6 +179,7 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     CR_PLACE(pair_tmp, c->pairs, cr_pair);
     CR_PLACE(contacts, c->contacts, cr_contact);
     CR_PLACE(solve_order, c->contacts, int);
+    CR_PLACE(support, c->bodies, int);
     CR_PLACE(warm, c->contacts, cr_warm);
     CR_PLACE(warm_next, c->contacts, cr_warm);
     CR_PLACE(heap, c->heap, cr_heap_entry);
@@ -266,6 +267,8 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->sbody = CR_AT(sbody, cr_solver_body);
     w->solve_order = CR_AT(solve_order, int);
     w->solve_count = 0;
+    w->support = CR_AT(support, int);
+    w->support_count = 0;
     w->drift = CR_AT(drift, cr_drift);
     w->heap = CR_AT(heap, cr_heap_entry);
     w->heap_count = 0;
@@ -695,6 +698,7 @@ static carom_status cr_step(carom_world *w)
     CR_PHASE(w, CAROM_PHASE_INTEGRATION);
     cr_solver_begin(w);
     cr_substep_init(&sub, w, h);
+    cr_solver_levels(w);
     if (w->prime)
         cr_solver_prime(w, &sub);
     if (events) {
@@ -735,6 +739,7 @@ static carom_status cr_step(carom_world *w)
         cr_solver_correct(w, &sub, 1);
         cr_solver_update_deltas(w);
         cr_solver_solve(w, &sub, 0, w->def.relax_iterations);
+        cr_solver_shock(w, &sub);
         cr_release_active(w, t1);
     }
     if (!events || w->budget_hit) {

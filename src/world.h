@@ -33,6 +33,8 @@ typedef struct cr_solver_body {
     cr_v2 vp;   /* pseudo-velocity of the position correction */
     float wp;
     float load; /* priming: weight carried, as an impulse per substep */
+    int level;  /* support level: 0 rests on a static body, n + 1 on a
+                   level-n body; -1 not supported (or no gravity) */
     int active; /* has a contact solved this substep */
 } cr_solver_body;
 
@@ -98,6 +100,9 @@ struct carom_world {
     cr_solver_body *sbody;
     int *solve_order;         /* the contacts the solver takes, in order */
     int solve_count;
+    int *support;             /* supported bodies, bottom up (breadth first
+                                 from the static ones) */
+    int support_count;
 
     /* events methods */
     cr_drift *drift;
