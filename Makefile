@@ -35,6 +35,8 @@ SCENE ?= tools/scenes/default.scene
 # Validation against Box2D 2.4.1 and timing (tools/box2d.mk): box2d,
 # validate, bench-box2d. `make` builds build/carom-box2d when Box2D is here.
 include tools/box2d.mk
+# The stress suite (tools/stress/stress.mk): make stress, make stress-check.
+include tools/stress/stress.mk
 HAVE_BOX2D := $(shell pkg-config --exists box2d 2>/dev/null && echo yes)
 
 .PHONY: validate-check check-cross bench all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps

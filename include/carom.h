@@ -28,8 +28,8 @@
  *    method (docs/events.md). Resting contact is the same in all three: a
  *    soft contact solver with substeps (docs/physics.md).
  *  - Scale: no tolerance is in absolute metres. They derive from a length
- *    unit (the bodies' mean half-width unless the world sets one) and from
- *    |gravity| dt, so a scene scaled by 100 behaves the same.
+ *    unit (the bodies' mean equivalent radius unless the world sets one)
+ *    and from |gravity| dt, so a scene scaled by 100 behaves the same.
  *  - Profiling: a library built with CAROM_ENABLE_PROFILE (build/profile/
  *    libcarom.a) counts every float operation by kind and pipeline phase
  *    (docs/cost-model.md).
@@ -182,9 +182,10 @@ typedef struct carom_world_def {
                                    (events methods) before the rest of the
                                    step's contacts are solved together; 0 =
                                    default (CAROM_DEFAULT_IMPACTS_PER_BODY) */
-    float length_unit;        /**< m; CAROM_AUTO (default): the mean half-width
-                                   of the dynamic bodies. Scales every
-                                   distance tolerance (carom_config.h) */
+    float length_unit;        /**< m; CAROM_AUTO (default): the mean
+                                   equivalent radius sqrt(area / pi) of the
+                                   dynamic bodies. Scales every distance
+                                   tolerance (carom_config.h) */
     float rest_speed;         /**< approach speed (m/s) below which contacts
                                    are resting, not impacts (no restitution,
                                    no event); CAROM_AUTO (default):

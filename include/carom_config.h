@@ -220,8 +220,10 @@
 #endif
 
 #ifndef CAROM_DEFAULT_RELAX_ITERATIONS
-#define CAROM_DEFAULT_RELAX_ITERATIONS 1 /**< sweeps per substep that remove
-                                              the push-out velocity again */
+#define CAROM_DEFAULT_RELAX_ITERATIONS 2 /**< velocity sweeps per substep
+                                              after the bodies moved (a
+                                              dense pile needs two to keep
+                                              overlaps under a slop) */
 #endif
 
 #ifndef CAROM_DEFAULT_SLEEP_TIME
@@ -232,9 +234,10 @@
 /* ---- scale: tolerances derived from a length unit and |a| dt ------------ */
 /*
  * carom has no absolute tolerance in metres or m/s. With the world's
- * length_unit L (0: the mean half-width of the dynamic bodies, so a scene
- * scaled by 100 in lengths and gravity behaves the same) and each body's
- * acceleration |a| (gravity plus force / mass):
+ * length_unit L (CAROM_AUTO: the mean equivalent radius sqrt(area / pi) of
+ * the dynamic bodies, so a scene scaled by 100 in lengths and gravity
+ * behaves the same) and each body's acceleration |a| (gravity plus force /
+ * mass):
  *   linear slop        CAROM_SLOP_PER_LENGTH x L
  *   speculative reach  CAROM_SPECULATIVE_SLOPS x slop, plus the motion of
  *                      the pair in the step
@@ -246,7 +249,7 @@
  */
 #ifndef CAROM_SLOP_PER_LENGTH
 #define CAROM_SLOP_PER_LENGTH 1.0e-3f /**< contact distance per length unit:
-                                           0.5 mm for unit boxes */
+                                           0.56 mm for unit boxes */
 #endif
 
 #ifndef CAROM_SPECULATIVE_SLOPS
@@ -320,7 +323,7 @@
 #endif
 
 #ifndef CAROM_IMPACT_ISLAND_ITERATIONS
-#define CAROM_IMPACT_ISLAND_ITERATIONS 256 /**< most sweeps of a simultaneous
+#define CAROM_IMPACT_ISLAND_ITERATIONS 64 /**< most sweeps of a simultaneous
                                                 impact solve; it stops
                                                 earlier once converged */
 #endif

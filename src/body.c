@@ -98,19 +98,24 @@ static carom_status cr_polygon_check(const cr_v2 *in, int n, cr_v2 *out)
 
 /*
  * Area, centroid and polar moment (about the centroid, per unit density) of
- * a counter-clockwise polygon: a fan of triangles from vertex 0, each
- * triangle's second moment integrated exactly, then moved to the centroid
- * with the parallel-axis theorem.
+ * a counter-clockwise polygon: a fan of triangles from the mean of the
+ * vertices, each triangle's second moment integrated exactly, then moved to
+ * the centroid with the parallel-axis theorem. Fanning from the mean (not
+ * from a vertex) makes the contributions of a symmetric polygon cancel
+ * exactly: a box's centroid is its centre to the last bit, so a head-on
+ * face impact gives it no spin from rounding.
  */
 static void cr_polygon_mass(const cr_v2 *v, int n, float *area, cr_v2 *center,
                             float *inertia)
 {
     int i;
     float a = 0.0f, j0 = 0.0f;
-    cr_v2 c = cr_v(0.0f, 0.0f);
-    cr_v2 o = v[0];
-    for (i = 1; i + 1 < n; ++i) {
-        cr_v2 e1 = cr_vsub(v[i], o), e2 = cr_vsub(v[i + 1], o);
+    cr_v2 c = cr_v(0.0f, 0.0f), o = cr_v(0.0f, 0.0f);
+    for (i = 0; i < n; ++i)
+        o = cr_vadd(o, v[i]);
+    o = cr_vscale(cr_div(1.0f, (float)n), o);
+    for (i = 0; i < n; ++i) {
+        cr_v2 e1 = cr_vsub(v[i], o), e2 = cr_vsub(v[(i + 1) % n], o);
         float d = cr_vcross(e1, e2);
         float ta = cr_mul(0.5f, d);
         float ix = cr_add(cr_add(cr_mul(e1.x, e1.x), cr_mul(e2.x, e1.x)),
@@ -320,6 +325,7 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
     st = cr_shape_build(def, &in.shape, &area, &unit_inertia);
     if (st != CAROM_OK)
         return st;
+    in.shape.size = cr_sqrt(cr_div(area, CR_PI));
     if (def->type != CAROM_BODY_STATIC &&
         (!cr_v2_within(def->velocity, CAROM_LIMIT_MAX_SPEED) ||
          cr_gt(cr_mul(cr_abs(def->angular_velocity), in.shape.extent),

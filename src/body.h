@@ -40,6 +40,8 @@ typedef struct cr_shape {
     float radius;       /* circle */
     float extent;       /* largest distance from the centre of mass */
     float half_width;   /* half the smallest width (circle: the radius) */
+    float size;         /* equivalent radius sqrt(area / pi): the body's
+                           contribution to the world's length unit */
     cr_v2 local_center; /* centre of mass in the definition's frame */
     cr_v2 verts[CAROM_MAX_POLYGON_VERTICES]; /* counter-clockwise */
     cr_v2 norms[CAROM_MAX_POLYGON_VERTICES]; /* outward unit edge normals */

@@ -49,13 +49,15 @@ cr_v2 cr_point_velocity(cr_v2 v, float w, cr_v2 r)
     return cr_vadd(v, cr_vcross_sv(w, r));
 }
 
-/* How far two bodies can close in over time h: relative speed, plus each
- * body's spin times its extent, plus the relative acceleration's h^2 / 2. */
+/* How far two bodies can close in over time h: the sum of their speeds
+ * (not their relative speed: two bodies falling side by side meet when the
+ * lower one lands), plus each body's spin times its extent, plus the
+ * relative acceleration's h^2 / 2. */
 float cr_pair_reach(const carom_world *w, int a, int b, float h)
 {
     const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
     float ea = w->info[a].shape.extent, eb = w->info[b].shape.extent;
-    float speed = cr_add(cr_vlen(cr_vsub(B->v, A->v)),
+    float speed = cr_add(cr_add(cr_vlen(A->v), cr_vlen(B->v)),
                          cr_add(cr_mul(cr_abs(A->w), ea), cr_mul(cr_abs(B->w), eb)));
     float acc = cr_vlen(cr_vsub(B->a, A->a));
     return cr_add(w->scale.spec,
@@ -99,7 +101,7 @@ void cr_contact_from_manifold(const carom_world *w, cr_contact *c,
         p->pt = 0.0f;
         p->max_pn = 0.0f;
         p->id = mp->id;
-        if (cr_le(mp->sep, w->scale.slop))
+        if (cr_le(mp->sep, w->scale.spec))
             c->flags |= CR_CONTACT_TOUCHING;
     }
     c->block = 0;
@@ -162,8 +164,13 @@ carom_status cr_contacts_build(carom_world *w, float dt)
         while (j < w->warm_count &&
                (w->warm[j].a < c->a || (w->warm[j].a == c->a && w->warm[j].b < c->b)))
             ++j;
-        if (j < w->warm_count && w->warm[j].a == c->a && w->warm[j].b == c->b)
+        if (j < w->warm_count && w->warm[j].a == c->a && w->warm[j].b == c->b) {
+            int k;
             cr_warm_match(c, &w->warm[j]);
+            for (k = 0; k < c->count; ++k)
+                if (cr_gt(c->pts[k].pn, 0.0f) && (c->flags & CR_CONTACT_TOUCHING))
+                    c->flags |= CR_CONTACT_RESTING;
+        }
         pr->contact = w->contact_count++;
     }
     return CAROM_OK;

@@ -42,8 +42,12 @@ typedef struct cr_contact_point {
 /* Flags of cr_contact.flags */
 #define CR_CONTACT_SOLVE 1u    /* solved by the contact solver this substep
                                   (not an impact waiting for its instant) */
-#define CR_CONTACT_TOUCHING 2u /* within the linear slop at the step start */
+#define CR_CONTACT_TOUCHING 2u /* within the speculative distance (a few
+                                  slops) at the step start */
 #define CR_CONTACT_NEW 4u      /* made during the step, after an impact */
+#define CR_CONTACT_RESTING 8u  /* touching and pushing already last step:
+                                  a resting contact, the solver's whatever
+                                  its approach (no micro-collisions) */
 
 typedef struct cr_contact {
     int a, b;          /* body slots, a < b */

@@ -40,12 +40,15 @@
 #include "narrowphase.h"
 #include "solver.h"
 #include "toi.h"
+#ifdef CR_DEBUG_PAIR
+#include <stdio.h>
+#endif
 
 #if CAROM_ENABLE_EVENTS
 
 /* Convergence of a simultaneous impact solve: the largest impulse change of
  * a sweep, relative to the largest impulse. */
-#define CR_ISLAND_TOL 1.0e-6f
+#define CR_ISLAND_TOL 1.0e-5f
 
 /* Approach below this fraction of the bodies' speeds is rounding. */
 #define CR_APPROACH_REL_TOL 1.0e-5f
@@ -472,9 +475,28 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
 }
 
 /* Sweeps over rows[0..n) until the impulses settle. */
+#ifdef CR_DEBUG_STATS
+#include <stdio.h>
+#include <stdlib.h>
+static long cr_dbg_solves, cr_dbg_iters, cr_dbg_rows, cr_dbg_max_rows, cr_dbg_capped;
+static void cr_dbg_print(void)
+{
+    fprintf(stderr, "island solves %ld, mean iterations %.1f, mean rows %.1f, max rows %ld, capped %ld\n",
+            cr_dbg_solves, cr_dbg_solves ? (double)cr_dbg_iters / cr_dbg_solves : 0.0,
+            cr_dbg_solves ? (double)cr_dbg_rows / cr_dbg_solves : 0.0, cr_dbg_max_rows, cr_dbg_capped);
+}
+#endif
+
 static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n)
 {
     int it, i, k;
+#ifdef CR_DEBUG_STATS
+    if (cr_dbg_solves++ == 0)
+        atexit(cr_dbg_print);
+    cr_dbg_rows += n;
+    if (n > cr_dbg_max_rows)
+        cr_dbg_max_rows = n;
+#endif
     for (it = 0; it < CAROM_IMPACT_ISLAND_ITERATIONS; ++it) {
         float change = 0.0f, biggest = 0.0f;
         for (i = 0; i < n; ++i) {
@@ -482,6 +504,11 @@ static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n)
             for (k = 0; k < rows[i].count; ++k)
                 biggest = cr_max(biggest, cr_abs(rows[i].pn[k]));
         }
+#ifdef CR_DEBUG_STATS
+        ++cr_dbg_iters;
+        if (it == CAROM_IMPACT_ISLAND_ITERATIONS - 1)
+            ++cr_dbg_capped;
+#endif
         if (!cr_gt(change, cr_mul(CR_ISLAND_TOL, biggest)))
             break;
         /* a single frictionless point is exact after one sweep */
@@ -602,6 +629,51 @@ static void cr_hold_contacts(carom_world *w, int nb, int nr, float t, float t_en
     }
 }
 
+/*
+ * The island grows as far as the impulse reaches: a resting contact of an
+ * island body that the solve has set approaching faster than the rest speed
+ * (a struck box pushed into the one below it) joins, with its other body,
+ * and the island is solved again, until nothing more is reached (or the
+ * island is full). A ball striking a stack meets the whole column down to
+ * the floor; a body landing on a pile meets only what it pushes.
+ */
+static int cr_island_grow(carom_world *w, int *nb, int nr, float t)
+{
+    int grown = 1, i, k;
+    while (grown) {
+        grown = 0;
+        for (i = 0; i < *nb; ++i) {
+            int body = w->island[i];
+            k = w->pair_head[body];
+            while (k >= 0) {
+                cr_pair *p = &w->pairs[k];
+                int other = p->a == body ? p->b : p->a;
+                int next = p->a == body ? p->next_a : p->next_b;
+                if (p->mark != w->mark_stamp && p->contact >= 0 && nr < w->row_cap &&
+                    (w->contacts[p->contact].flags & CR_CONTACT_SOLVE) &&
+                    (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING)) {
+                    const cr_contact *c = &w->contacts[p->contact];
+                    int in = w->mark[other] == w->mark_stamp;
+                    if (!in && cr_moving(&w->bodies[other]))
+                        cr_sync(&w->bodies[other], &w->drift[other], t);
+                    if (cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b)) &&
+                        (in || cr_island_add_body(w, other, nb))) {
+                        p->mark = w->mark_stamp;
+                        if (cr_row_make(w, k, &w->rows[nr])) {
+                            ++nr;
+                            grown = 1;
+                        }
+                    }
+                }
+                k = next;
+            }
+        }
+        if (grown)
+            cr_rows_solve(w, w->rows, nr);
+    }
+    return nr;
+}
+
 /* The impacts at local time t: pair `seed`, and every other pair due at
  * the same instant. */
 static carom_status cr_impact_instant(carom_world *w, int seed, float t,
@@ -635,38 +707,34 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         p->mark = w->mark_stamp;
         w->rows[seeds++].pair = e.pair;
     }
-    /* through the resting contacts that touch the island's bodies */
-    for (i = 0; i < nb; ++i) {
-        int body = w->island[i];
-        k = w->pair_head[body];
-        while (k >= 0) {
-            cr_pair *p = &w->pairs[k];
-            int other = p->a == body ? p->b : p->a;
-            int next = p->a == body ? p->next_a : p->next_b;
-            if (p->mark != w->mark_stamp && p->contact >= 0 &&
-                (w->contacts[p->contact].flags & CR_CONTACT_SOLVE) &&
-                (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING) &&
-                seeds < w->row_cap && cr_island_add_body(w, other, &nb)) {
-                p->mark = w->mark_stamp;
-                w->rows[seeds++].pair = k;
-            }
-            k = next;
-        }
-    }
     /* everyone to the instant, then the rows */
     for (i = 0; i < nb; ++i)
         cr_sync(&w->bodies[w->island[i]], &w->drift[w->island[i]], t);
     for (i = 0; i < seeds; ++i) {
         cr_pair *p = &w->pairs[w->rows[i].pair];
-        /* static or sleeping partners do not move: nothing to sync */
         if (cr_row_make(w, w->rows[i].pair, &w->rows[nr]))
             ++nr;
         p->toi = CR_NEVER;
     }
     CR_PHASE(w, CAROM_PHASE_IMPULSES);
     cr_rows_solve(w, w->rows, nr);
+    nr = cr_island_grow(w, &nb, nr, t);
     for (i = 0; i < nr; ++i) {
         const cr_impact_row *r = &w->rows[i];
+        const cr_pair *p = &w->pairs[r->pair];
+        /* a contact the impact leaves touching is the solver's again, for
+         * this substep's relax and position correction too */
+        if (p->contact >= 0 &&
+            (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING) &&
+            !cr_gt(cr_contact_approach(w, &w->contacts[p->contact]),
+                   cr_rest_speed(w, r->a, r->b))) {
+            w->contacts[p->contact].flags |= CR_CONTACT_SOLVE;
+            if (w->bodies[r->a].type != CAROM_BODY_STATIC)
+                w->sbody[r->a].active = 1;
+            if (w->bodies[r->b].type != CAROM_BODY_STATIC)
+                w->sbody[r->b].active = 1;
+            w->reorder = 1;
+        }
         if (!r->impact)
             continue;
         for (k = 0; k < r->count; ++k)
@@ -675,6 +743,27 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         w->pairs[r->pair].met = 1;
     }
     ++w->stats.impact_solves;
+#ifdef CR_DEBUG_PAIR
+    {
+        extern int cr_dbg_a, cr_dbg_b;
+        int q, hit = 0;
+        for (q = 0; q < nb; ++q)
+            hit |= w->island[q] == cr_dbg_a || w->island[q] == cr_dbg_b;
+        if (hit) {
+            fprintf(stderr, "    impact t=%.5f bodies %d rows %d:", (double)t, nb, nr);
+            for (q = 0; q < nr; ++q)
+                fprintf(stderr, " (%d,%d %s app %.3f pn %.4g)", w->rows[q].a, w->rows[q].b, w->rows[q].impact ? "imp" : "rest",
+                        (double)w->rows[q].approach, (double)w->rows[q].pn[0]);
+            {
+                const cr_body *A = &w->bodies[cr_dbg_a], *B = &w->bodies[cr_dbg_b];
+                cr_v2 xa, xb; cr_rot qa, qb;
+                cr_pose_at(A, &w->drift[cr_dbg_a], t, &xa, &qa);
+                cr_pose_at(B, &w->drift[cr_dbg_b], t, &xb, &qb);
+                fprintf(stderr, " | pair dist at t %.4f\n", (double)cr_vlen(cr_vsub(xb, xa)));
+            }
+        }
+    }
+#endif
     CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
     if (!any)
         return CAROM_OK; /* nothing changed course; the seeds wait for the
@@ -716,6 +805,7 @@ carom_status cr_events_advance(carom_world *w, float t_end)
 {
     carom_status st = CAROM_OK;
     int budget = w->def.max_impacts;
+    w->reorder = 0;
     CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
     while (st == CAROM_OK && w->heap_count > 0 && !w->budget_hit) {
         cr_heap_entry e = w->heap[0];
@@ -731,6 +821,8 @@ carom_status cr_events_advance(carom_world *w, float t_end)
         }
         st = cr_impact_instant(w, e.pair, e.t, t_end);
     }
+    if (w->reorder)
+        cr_solver_order(w);
     return st;
 }
 

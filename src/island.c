@@ -129,8 +129,20 @@ void cr_island_sleep(carom_world *w, float dt)
         if (ra != rb)
             parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
     }
+    /* an island sleeps only if it touches something: a body coasting
+     * freely (a slow billiard block, a drifting body in zero gravity) is
+     * not at rest however slow it is */
     for (i = 0; i < w->awake_count; ++i)
-        can_sleep[w->awake[i]] = 1;
+        can_sleep[w->awake[i]] = 0;
+    for (i = 0; i < w->contact_count; ++i) {
+        const cr_contact *c = &w->contacts[i];
+        if (!(c->flags & CR_CONTACT_TOUCHING))
+            continue;
+        if (w->bodies[c->a].type == CAROM_BODY_DYNAMIC)
+            can_sleep[cr_find(parent, c->a)] = 1;
+        if (w->bodies[c->b].type == CAROM_BODY_DYNAMIC)
+            can_sleep[cr_find(parent, c->b)] = 1;
+    }
     for (i = 0; i < w->awake_count; ++i) {
         int id = w->awake[i];
         const cr_body *b = &w->bodies[id];

@@ -260,13 +260,23 @@ static int cr_polygons(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
         seps[0] = cr_vdot(nref, cr_vsub(lo, v11));
         k = 1;
     } else {
-        lo = v22;
-        if (cr_lt(lower2, 0.0f))
-            lo = cr_vmadd(v22, cr_div(cr_neg(lower2), span), cr_vsub(v21, v22));
-        hi = v21;
-        if (cr_gt(upper2, upper1))
-            hi = cr_vmadd(v22, cr_div(cr_sub(upper1, lower2), span),
-                          cr_vsub(v21, v22));
+        /* an end cut by a side plane lies on that plane exactly (at the
+         * reference vertex, moved along the normal to the incident face),
+         * so a symmetric pair gets symmetric points to the last bit and a
+         * face impact gives no spurious spin */
+        if (cr_lt(lower2, 0.0f)) {
+            cr_v2 cut = cr_vmadd(v22, cr_div(cr_neg(lower2), span), cr_vsub(v21, v22));
+            lo = cr_vmadd(v11, cr_vdot(nref, cr_vsub(cut, v11)), nref);
+        } else {
+            lo = v22;
+        }
+        if (cr_gt(upper2, upper1)) {
+            cr_v2 cut = cr_vmadd(v22, cr_div(cr_sub(upper1, lower2), span),
+                                 cr_vsub(v21, v22));
+            hi = cr_vmadd(v12, cr_vdot(nref, cr_vsub(cut, v11)), nref);
+        } else {
+            hi = v21;
+        }
         pts[0] = lo;
         ids[0] = CR_ID(i11, i22);
         seps[0] = cr_vdot(nref, cr_vsub(lo, v11));

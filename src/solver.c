@@ -49,6 +49,10 @@
  * word: a light box under a heavy one is not pushed into the floor.
  */
 #include "solver.h"
+#ifdef CR_DEBUG_PAIR
+#include <stdio.h>
+int cr_dbg_a = -1, cr_dbg_b = -1;
+#endif
 
 void cr_substep_init(cr_substep *s, const carom_world *w, float h)
 {
@@ -93,15 +97,33 @@ static int cr_grounded(const carom_world *w, const cr_contact *c)
            w->bodies[c->b].type != CAROM_BODY_DYNAMIC;
 }
 
+/* Separation of point p now, from the bodies' motion since the step start. */
+static float cr_current_sep(const cr_contact *c, const cr_contact_point *p,
+                            const cr_solver_body *sa, const cr_solver_body *sb)
+{
+    cr_v2 d = cr_vadd(cr_vsub(sb->dp, sa->dp),
+                      cr_vsub(cr_rotate(sb->dq, p->rb), cr_rotate(sa->dq, p->ra)));
+    return cr_add(p->base_sep, cr_vdot(c->n, d));
+}
+
 float cr_contact_approach(const carom_world *w, const cr_contact *c)
 {
     const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+    const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
     float fastest = 0.0f;
-    int k;
+    int k, touching = 0;
+    /* if some point touches, only the touching points count: the far end
+     * of a rod toppling about its other end is a speculative point, which
+     * the solver stops where it meets, not an impact of the pair */
+    for (k = 0; k < c->count; ++k)
+        touching |= cr_le(cr_current_sep(c, &c->pts[k], sa, sb), w->scale.spec);
     for (k = 0; k < c->count; ++k) {
         const cr_contact_point *p = &c->pts[k];
-        cr_v2 dv = cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
-                           cr_point_velocity(A->v, A->w, p->ra));
+        cr_v2 dv;
+        if (touching && cr_gt(cr_current_sep(c, p, sa, sb), w->scale.spec))
+            continue;
+        dv = cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
+                     cr_point_velocity(A->v, A->w, p->ra));
         fastest = cr_max(fastest, cr_neg(cr_vdot(dv, c->n)));
     }
     return fastest;
@@ -109,7 +131,7 @@ float cr_contact_approach(const carom_world *w, const cr_contact *c)
 
 int cr_solver_classify(carom_world *w, int events)
 {
-    int i, solved = 0, pass;
+    int i, solved = 0;
     for (i = 0; i < w->awake_count; ++i)
         w->sbody[w->awake[i]].active = 0;
     for (i = 0; i < w->contact_count; ++i) {
@@ -117,9 +139,22 @@ int cr_solver_classify(carom_world *w, int events)
         const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
         int take = 1;
         /* an approach faster than the rest speed is an impact: the event
-         * loop takes it at its instant */
-        if (events)
+         * loop takes it at its instant; but a resting contact (touching
+         * and pushing since the last step) stays the solver's, or a
+         * settling pile would turn into a storm of micro-collisions */
+        if (events && !(c->flags & CR_CONTACT_RESTING))
             take = !cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b));
+#ifdef CR_DEBUG_PAIR
+        {
+            extern int cr_dbg_a, cr_dbg_b;
+            if (c->a == cr_dbg_a && c->b == cr_dbg_b) {
+                const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
+                cr_v2 d = cr_vsub(B->x, A->x);
+                fprintf(stderr, "  classify: take %d approach %.4f rest %.4f dist %.4f drift.t a %.5f b %.5f active %d %d\n", take,
+                        (double)cr_contact_approach(w, c), (double)cr_rest_speed(w, c->a, c->b), (double)cr_vlen(d), (double)w->drift[c->a].t, (double)w->drift[c->b].t, sa->active, sb->active);
+            }
+        }
+#endif
         if (take) {
             c->flags |= CR_CONTACT_SOLVE;
             if (cr_moves(A))
@@ -131,6 +166,13 @@ int cr_solver_classify(carom_world *w, int events)
             c->flags &= ~CR_CONTACT_SOLVE;
         }
     }
+    cr_solver_order(w);
+    return solved;
+}
+
+void cr_solver_order(carom_world *w)
+{
+    int i, pass;
     /* the order of the sweeps: moving pairs, then grounded ones */
     w->solve_count = 0;
     for (pass = 0; pass < 2; ++pass)
@@ -139,7 +181,6 @@ int cr_solver_classify(carom_world *w, int events)
             if ((c->flags & CR_CONTACT_SOLVE) && cr_grounded(w, c) == pass)
                 w->solve_order[w->solve_count++] = i;
         }
-    return solved;
 }
 
 /* Impulse P along dir at lever arms la, lb: -P on A, +P on B. */
@@ -198,14 +239,6 @@ void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s)
     }
 }
 
-/* Separation of point p now, from the bodies' motion since the step start. */
-static float cr_current_sep(const cr_contact *c, const cr_contact_point *p,
-                            const cr_solver_body *sa, const cr_solver_body *sb)
-{
-    cr_v2 d = cr_vadd(cr_vsub(sb->dp, sa->dp),
-                      cr_vsub(cr_rotate(sb->dq, p->rb), cr_rotate(sa->dq, p->ra)));
-    return cr_add(p->base_sep, cr_vdot(c->n, d));
-}
 
 static float cr_point_vn(cr_v2 va, float wa, cr_v2 vb, float wb, const cr_contact *c,
                          const cr_contact_point *p)
@@ -504,6 +537,12 @@ static float cr_lift(const cr_contact *c, int lower, cr_v2 up)
  * of the vertical. */
 #define CR_SUPPORT_COS 0.5f
 
+/* The velocity sweep of shock propagation takes only supports within 8
+ * degrees of the vertical (a face resting on a face): along a slanted
+ * support, an impulse with no reaction would push sideways too, and a pile
+ * of circles would never settle. */
+#define CR_SHOCK_COS 0.99f
+
 /* Is contact c (touching) a support of body `upper` by the other body
  * `lower` (static, kinematic, or lower in the support order)? */
 static int cr_supports(const cr_contact *c, int lower, cr_v2 up)
@@ -715,7 +754,7 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
 {
     int i, k, j;
     cr_v2 up;
-#ifdef CR_DEBUG_NO_SHOCK
+#if defined(CR_DEBUG_NO_SHOCK) || defined(CR_DEBUG_NO_VSHOCK)
     return;
 #endif
     if (!cr_up(w, &up))
@@ -726,7 +765,9 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
             const cr_pair *p = &w->pairs[k];
             int next = p->a == u ? p->next_a : p->next_b;
             if (cr_support_of(w, p, u, up) &&
-                (w->contacts[p->contact].flags & CR_CONTACT_SOLVE)) {
+                (w->contacts[p->contact].flags & CR_CONTACT_SOLVE)
+                && cr_gt(cr_lift(&w->contacts[p->contact], p->a == u ? p->b : p->a, up),
+                         CR_SHOCK_COS)) {
                 const cr_contact *c = &w->contacts[p->contact];
                 const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
                 const cr_body *U = &w->bodies[u];

@@ -37,6 +37,10 @@ void cr_solver_shock(carom_world *w, const cr_substep *s);
  * contacts that have no warm start from the weights they carry. */
 void cr_solver_prime(carom_world *w, const cr_substep *s);
 
+/* The sweep order of the contacts the solver takes (after classify, and
+ * again after impacts handed contacts back to the solver). */
+void cr_solver_order(carom_world *w);
+
 /* Active bodies: remember the substep's start velocity, add the forces'
  * kick a h, and re-apply the contacts' accumulated impulses. */
 void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s);

@@ -25,6 +25,9 @@
  * to warm-start from, so the support of a stack must be found from zero
  * (a 40-box column needs a few hundred sweeps; they run once). */
 #define CR_PRIME_ITERATIONS 256
+#ifndef CR_CORRECT_SWEEPS
+#define CR_CORRECT_SWEEPS 1
+#endif
 /* Contact rows per body of a simultaneous impact solve. */
 #define CR_ROWS_PER_ISLAND_BODY 4
 
@@ -502,10 +505,10 @@ static void cr_scale_compute(const carom_world *w, cr_scale *s)
         const cr_body *b = &w->bodies[i];
         if (!(b->flags & CR_BODY_ALIVE))
             continue;
-        all = cr_add(all, w->info[i].shape.half_width);
+        all = cr_add(all, w->info[i].shape.size);
         ++m;
         if (b->type == CAROM_BODY_DYNAMIC) {
-            sum = cr_add(sum, w->info[i].shape.half_width);
+            sum = cr_add(sum, w->info[i].shape.size);
             ++n;
         }
     }
@@ -736,18 +739,20 @@ static carom_status cr_step(carom_world *w)
         cr_sync_active(w, t1);
         CR_PHASE(w, CAROM_PHASE_RESTING);
         cr_solver_update_deltas(w);
-        cr_solver_correct(w, &sub, 1);
+        cr_solver_correct(w, &sub, CR_CORRECT_SWEEPS);
         cr_solver_update_deltas(w);
         cr_solver_solve(w, &sub, 0, w->def.relax_iterations);
         cr_solver_shock(w, &sub);
         cr_release_active(w, t1);
     }
-    if (!events || w->budget_hit) {
-        CR_PHASE(w, CAROM_PHASE_IMPULSES);
-        cr_solver_restitution(w);
-        if (w->budget_hit)
-            ++w->stats.budget_steps;
-    }
+    /* restitution for the contacts the solver stopped faster than the rest
+     * speed: all impacts in the discrete method; in the events methods the
+     * speculative points of resting pairs (a toppling rod's far end) and,
+     * past the impact budget, the rest of the step's impacts */
+    CR_PHASE(w, CAROM_PHASE_IMPULSES);
+    cr_solver_restitution(w);
+    if (w->budget_hit)
+        ++w->stats.budget_steps;
 
     CR_PHASE(w, CAROM_PHASE_INTEGRATION);
     cr_sync_all(w, dt);

@@ -120,6 +120,7 @@ struct carom_world {
     int row_cap;
     int impacts_this_step;
     int budget_hit;
+    int reorder;              /* impacts handed contacts to the solver */
 
     /* results */
     carom_event *events;

@@ -1,0 +1,45 @@
+# tools/stress/stress.mk -- the stress suite (tools/stress/, docs/stability.md).
+# Meant to be included by the Makefile (after tools/box2d.mk); uses its CC,
+# BUILD, CPPFLAGS, TOOL_CFLAGS, LIB, TOOL_OBJ, CLI and BOX2D_BIN. Standalone:
+#   make -f Makefile -f tools/stress/stress.mk stress-check
+#
+#   make stress          every scene of tools/scenes/stress through carom
+#                        (events, discrete), Box2D 2.4.1 and, if
+#                        STRESS_V3=PATH is given, the Box2D v3 harness;
+#                        writes docs/stability.md and docs/stability-*.png;
+#                        fails if a carom result fails (~10 min on 2 cores)
+#   make stress-check    the checker's self-test (tools/stress/selftest.sh),
+#                        then the fast subset ('# fast' scenes), no report
+#                        (a few seconds)
+#   make stress-scenes   regenerate tools/scenes/stress (python3)
+#
+# STRESS_JOBS (default 2) runs that many engine runs at once.
+
+# Wherever this file is included, it does not change the default goal.
+stress_default_goal := $(.DEFAULT_GOAL)
+
+STRESS_CHECK := $(BUILD)/stress_check
+STRESS_JOBS ?= 2
+STRESS_V3 ?=
+STRESS_BOX2D := $(if $(shell pkg-config --exists box2d 2>/dev/null && echo yes),$(BOX2D_BIN))
+STRESS_ARGS = --carom $(CLI) --box2d $(BOX2D_BIN) --checker $(STRESS_CHECK) \
+    --jobs $(STRESS_JOBS) $(if $(STRESS_V3),--v3 $(STRESS_V3))
+
+.PHONY: stress stress-check stress-scenes
+
+# Reads scenes with tools/scene.c only (scene_load); no library internals.
+$(STRESS_CHECK): tools/stress/stress_check.c tools/scene.h $(wildcard include/*.h) $(TOOL_OBJ) $(LIB) | $(BUILD)/tools
+	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) tools/stress/stress_check.c $(TOOL_OBJ) $(LIB) -o $@ -lm
+
+stress: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D)
+	@sh tools/ensure-deps.sh plot
+	sh tools/stress/run.sh $(STRESS_ARGS) --report docs/stability.md
+
+stress-check: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D)
+	sh tools/stress/selftest.sh $(STRESS_CHECK)
+	sh tools/stress/run.sh $(STRESS_ARGS) --fast
+
+stress-scenes:
+	python3 tools/stress/gen_scenes.py
+
+.DEFAULT_GOAL := $(stress_default_goal)
