@@ -323,7 +323,7 @@
 #endif
 
 #ifndef CAROM_IMPACT_ISLAND_ITERATIONS
-#define CAROM_IMPACT_ISLAND_ITERATIONS 64 /**< most sweeps of a simultaneous
+#define CAROM_IMPACT_ISLAND_ITERATIONS 128 /**< most sweeps of a simultaneous
                                                 impact solve; it stops
                                                 earlier once converged */
 #endif

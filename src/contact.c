@@ -93,9 +93,15 @@ void cr_contact_from_manifold(const carom_world *w, cr_contact *c,
         rnb = cr_lever(&ib->shape, p->rb, m->n, 1);
         p->mass_n = cr_effective_mass(A, B, rna, rnb);
         p->mass_t = cr_effective_mass(A, B, cr_vcross(p->ra, t), cr_vcross(p->rb, t));
-        p->rel_vn = cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
-                                    cr_point_velocity(A->v, A->w, p->ra)),
-                            m->n);
+        /* the approach restitution uses: the discrete method starts from
+         * the step's start (Box2D v3), the events methods only count one
+         * captured when the point first pushes in a solve (their impacts
+         * were taken at their instants already) */
+        p->rel_vn = w->method == CAROM_METHOD_DISCRETE
+                        ? cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
+                                          cr_point_velocity(A->v, A->w, p->ra)),
+                                  m->n)
+                        : 0.0f;
         p->pn = 0.0f;
         p->pp = 0.0f;
         p->pt = 0.0f;
@@ -176,6 +182,30 @@ carom_status cr_contacts_build(carom_world *w, float dt)
     return CAROM_OK;
 }
 
+/* Contact c of pair pr from manifold m at the bodies' current poses, its
+ * separations measured from the step start like every other contact's. */
+static void cr_contact_fill(carom_world *w, cr_contact *c, const cr_pair *pr,
+                            const cr_manifold *m)
+{
+    const cr_body *A = &w->bodies[pr->a], *B = &w->bodies[pr->b];
+    const cr_body *A0 = &w->backup[pr->a], *B0 = &w->backup[pr->b];
+    cr_v2 dpa = cr_vsub(A->x, A0->x), dpb = cr_vsub(B->x, B0->x);
+    cr_rot dqa = cr_r(cr_add(cr_mul(A->q.c, A0->q.c), cr_mul(A->q.s, A0->q.s)),
+                      cr_sub(cr_mul(A->q.s, A0->q.c), cr_mul(A->q.c, A0->q.s)));
+    cr_rot dqb = cr_r(cr_add(cr_mul(B->q.c, B0->q.c), cr_mul(B->q.s, B0->q.s)),
+                      cr_sub(cr_mul(B->q.s, B0->q.c), cr_mul(B->q.c, B0->q.s)));
+    int k;
+    cr_contact_from_manifold(w, c, m);
+    /* the solver measures separation from the step start: count the
+     * displacements so far in the base */
+    for (k = 0; k < c->count; ++k) {
+        cr_contact_point *p = &c->pts[k];
+        cr_v2 d = cr_vsub(cr_vadd(dpb, cr_rotate(dqb, p->rb)),
+                          cr_vadd(dpa, cr_rotate(dqa, p->ra)));
+        p->base_sep = cr_sub(m->pts[k].sep, cr_vdot(c->n, d));
+    }
+}
+
 int cr_contact_add(carom_world *w, int pair)
 {
     cr_pair *pr = &w->pairs[pair];
@@ -196,26 +226,24 @@ int cr_contact_add(carom_world *w, int pair)
     c->pair = pair;
     c->flags = CR_CONTACT_NEW;
     c->reach = reach;
-    cr_contact_from_manifold(w, c, &m);
-    /* the solver measures separation from the step start: count the
-     * displacements so far in the base */
-    {
-        const cr_body *A0 = &w->backup[pr->a], *B0 = &w->backup[pr->b];
-        cr_v2 dpa = cr_vsub(A->x, A0->x), dpb = cr_vsub(B->x, B0->x);
-        cr_rot dqa = cr_r(cr_add(cr_mul(A->q.c, A0->q.c), cr_mul(A->q.s, A0->q.s)),
-                          cr_sub(cr_mul(A->q.s, A0->q.c), cr_mul(A->q.c, A0->q.s)));
-        cr_rot dqb = cr_r(cr_add(cr_mul(B->q.c, B0->q.c), cr_mul(B->q.s, B0->q.s)),
-                          cr_sub(cr_mul(B->q.s, B0->q.c), cr_mul(B->q.c, B0->q.s)));
-        int k;
-        for (k = 0; k < c->count; ++k) {
-            cr_contact_point *p = &c->pts[k];
-            cr_v2 d = cr_vsub(cr_vadd(dpb, cr_rotate(dqb, p->rb)),
-                              cr_vadd(dpa, cr_rotate(dqa, p->ra)));
-            p->base_sep = cr_sub(m.pts[k].sep, cr_vdot(c->n, d));
-        }
-    }
+    cr_contact_fill(w, c, pr, &m);
     pr->contact = w->contact_count++;
     return pr->contact;
+}
+
+void cr_contact_remake(carom_world *w, cr_contact *c)
+{
+    const cr_pair *pr = &w->pairs[c->pair];
+    const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+    cr_manifold m;
+    c->flags &= ~CR_CONTACT_RESTING;
+    if (!cr_collide(&w->info[c->a].shape, A->x, A->q, &w->info[c->b].shape,
+                    B->x, B->q, c->reach, w->scale.face_tol, &m)) {
+        c->count = 0;
+        c->flags &= ~CR_CONTACT_TOUCHING;
+        return;
+    }
+    cr_contact_fill(w, c, pr, &m);
 }
 
 /* Keep this step's impulses for the next, in (a, b) order: contacts made

@@ -35,7 +35,9 @@ typedef struct cr_contact_point {
     float pp;        /* pseudo-impulse of the position correction */
     float max_pn;    /* largest normal impulse of the step */
     float mass_n, mass_t; /* effective masses along n and the tangent */
-    float rel_vn;    /* normal relative velocity at the start of the step */
+    float rel_vn;    /* normal relative velocity for restitution: at the
+                        start of the step (discrete) or when the point first
+                        pushes (events methods) */
     unsigned id;
 } cr_contact_point;
 
@@ -92,6 +94,11 @@ carom_status cr_contacts_build(carom_world *w, float dt);
 /* A contact for candidate pair `pair` made now (after an impact); its
  * index, -1 if the pair is out of reach, -2 if the contacts are full. */
 int cr_contact_add(carom_world *w, int pair);
+
+/* Contact c again at the bodies' current poses (synchronised): after an
+ * impact changed the bodies' course the step-start normal and points are
+ * stale. Impulses start at zero; no points if the pair is out of reach. */
+void cr_contact_remake(carom_world *w, cr_contact *c);
 
 /* The 2x2 linear complementarity problem of a 2-point manifold: x >= 0,
  * y = K x + b >= 0, x_i y_i = 0, K = [k11 k12; k12 k22] positive definite;

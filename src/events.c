@@ -48,13 +48,11 @@
 
 /* Convergence of a simultaneous impact solve: the largest impulse change of
  * a sweep, relative to the largest impulse. */
-#define CR_ISLAND_TOL 1.0e-5f
+#define CR_ISLAND_TOL 1.0e-6f
 
 /* Approach below this fraction of the bodies' speeds is rounding. */
-#define CR_APPROACH_REL_TOL 1.0e-5f
+#define CR_APPROACH_REL_TOL 1.0e-4f
 
-/* Touching: within this fraction of the slop (time of impact search). */
-#define CR_TOUCH_FRACTION 0.01f
 
 /* Smallest det(K) / (k11 k22) for which a 2-point row is solved as a block
  * (1 - cos^2 of the angle between the two points' impulse rows). */
@@ -217,7 +215,9 @@ static void cr_pair_search(carom_world *w, int k, float t0)
 {
     cr_pair *p = &w->pairs[k];
     cr_mover A, B;
-    float dt = w->def.dt, slop = w->scale.slop, toi, sep, scale, approach;
+    float dt = w->def.dt, slop = w->scale.slop;
+    float tol = cr_mul(CAROM_TOI_TOLERANCE, slop), toi, sep, scale, approach;
+    int slow = 0;
     cr_v2 xa, xb;
     cr_rot qa, qb;
 
@@ -247,26 +247,50 @@ static void cr_pair_search(carom_world *w, int k, float t0)
         qb = B.b->q;
     }
     sep = cr_separation(A.s, xa, qa, B.s, xb, qb);
-    if (cr_le(sep, cr_mul(CR_TOUCH_FRACTION, slop))) {
+    if (cr_le(sep, tol)) {
         /* touching now: an impact at once if approaching fast; otherwise
-         * a contact for the solver from the next substep */
+         * a contact for the solver */
         approach = cr_approach_speed(&A, &B, t0, slop, &scale);
         if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale)))
             p->toi = t0;
         else
-            p->met = 1;
-    } else if (cr_time_of_impact(&A, &B, t0, dt,
-                                 cr_mul(CAROM_TOI_TOLERANCE, slop), &toi)) {
+            p->met = slow = 1;
+    } else if (cr_time_of_impact(&A, &B, t0, dt, tol, &toi)) {
         /* arriving slower than the rest speed is coming to rest, not an
          * impact: the contact solver takes it */
         approach = cr_approach_speed(&A, &B, toi, slop, &scale);
         if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale)))
             p->toi = toi;
         else
-            p->met = 1;
+            p->met = slow = 1;
     }
-    if (cr_le(p->toi, dt))
+    if (cr_le(p->toi, dt)) {
         cr_heap_push(w, k);
+    } else if (p->contact >= 0 && slow) {
+        /* a contact the solver left to the impacts that is no impact
+         * after all (it touches or arrives slowly): the solver's again, so
+         * nothing is left unsolved. A pair that does not meet before the
+         * step ends is left alone: a speculative row would stop it at the
+         * step's end and lose its bounce (the next step's search finds
+         * the impact at its instant) */
+        cr_contact *c = &w->contacts[p->contact];
+        if (cr_gt(t0, 0.0f)) {
+            /* made at the step start, before the bodies changed course:
+             * its normal and points again, as they are now */
+            if (cr_moving(A.b))
+                cr_sync(&w->bodies[p->a], &w->drift[p->a], t0);
+            if (cr_moving(B.b))
+                cr_sync(&w->bodies[p->b], &w->drift[p->b], t0);
+            cr_contact_remake(w, c);
+        }
+        c->flags |= CR_CONTACT_SOLVE;
+        if (w->bodies[p->a].type != CAROM_BODY_STATIC)
+            w->sbody[p->a].active = 1;
+        if (w->bodies[p->b].type != CAROM_BODY_STATIC)
+            w->sbody[p->b].active = 1;
+        w->reorder = 1;
+        p->solved = 1;
+    }
 }
 
 void cr_events_begin(carom_world *w)
@@ -517,17 +541,40 @@ static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n)
     }
 }
 
+/* A body's velocity before the impulses of the current instant: recorded
+ * when it joined the island; static and kinematic bodies never change. */
+static void cr_pre_velocity(const carom_world *w, int i, cr_v2 *v, float *om)
+{
+    if (w->mark[i] == w->mark_stamp && w->bodies[i].type == CAROM_BODY_DYNAMIC) {
+        *v = w->drift[i].v_pre;
+        *om = w->drift[i].w_pre;
+    } else {
+        *v = w->bodies[i].v;
+        *om = w->bodies[i].w;
+    }
+}
+
+/* Remember the velocity of body i before this instant's impulses. */
+static void cr_note_pre(carom_world *w, int i)
+{
+    w->drift[i].v_pre = w->bodies[i].v;
+    w->drift[i].w_pre = w->bodies[i].w;
+}
+
 /* Row for pair k at the bodies' current poses (synchronised), 0 if the
- * pair does not touch. */
+ * pair does not touch. The Newton target of each point is e times its
+ * approach before this instant's impulses (a body pushed by another row of
+ * the same solve is not approaching on its own). */
 static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
 {
     const cr_pair *p = &w->pairs[k];
     const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
     const cr_body_info *ia = &w->info[p->a], *ib = &w->info[p->b];
-    float scale, threshold;
+    float scale, threshold, wa, wb;
     cr_manifold m;
-    cr_v2 t;
+    cr_v2 t, va, vb;
     int j;
+    /* touching within the slop: the simultaneous rows */
     if (!cr_collide(&ia->shape, A->x, A->q, &ib->shape, B->x, B->q, w->scale.slop,
                     w->scale.face_tol, &m))
         return 0;
@@ -547,6 +594,8 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
     scale = cr_add(cr_add(cr_vlen(A->v), cr_vlen(B->v)),
                    cr_add(cr_mul(cr_abs(A->w), ia->shape.extent),
                           cr_mul(cr_abs(B->w), ib->shape.extent)));
+    cr_pre_velocity(w, p->a, &va, &wa);
+    cr_pre_velocity(w, p->b, &vb, &wb);
     for (j = 0; j < m.count; ++j) {
         r->ra[j] = cr_vsub(m.pts[j].p, A->x);
         r->rb[j] = cr_vsub(m.pts[j].p, B->x);
@@ -556,14 +605,21 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
                                          cr_vcross(r->rb[j], t));
         r->pn[j] = 0.0f;
         r->pt[j] = 0.0f;
-        r->target[j] = cr_neg(cr_row_vn(w, r, j, m.n)); /* approach, for now */
+        /* the approach before the instant, for now */
+        r->target[j] = cr_neg(cr_vdot(cr_vsub(cr_point_velocity(vb, wb, r->rb[j]),
+                                              cr_point_velocity(va, wa, r->ra[j])),
+                                      m.n));
         r->approach = cr_max(r->approach, r->target[j]);
     }
     threshold = cr_impact_speed(w, p->a, p->b, scale);
     r->impact = cr_gt(r->approach, threshold);
+    /* past the impact budget an impact is plastic (e = 0): a squeezed
+     * chain then ends, and no energy is made (simultaneous Newton targets
+     * would make it; Poisson's expansion after the fact is stale) */
     for (j = 0; j < m.count; ++j)
-        r->target[j] = r->impact ? cr_mul(r->restitution, cr_max(0.0f, r->target[j]))
-                                 : 0.0f;
+        r->target[j] = r->impact && !w->budget_hit
+                           ? cr_mul(r->restitution, cr_max(0.0f, r->target[j]))
+                           : 0.0f;
     return 1;
 }
 
@@ -654,8 +710,10 @@ static int cr_island_grow(carom_world *w, int *nb, int nr, float t)
                     (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING)) {
                     const cr_contact *c = &w->contacts[p->contact];
                     int in = w->mark[other] == w->mark_stamp;
-                    if (!in && cr_moving(&w->bodies[other]))
+                    if (!in && cr_moving(&w->bodies[other])) {
                         cr_sync(&w->bodies[other], &w->drift[other], t);
+                        cr_note_pre(w, other);
+                    }
                     if (cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b)) &&
                         (in || cr_island_add_body(w, other, nb))) {
                         p->mark = w->mark_stamp;
@@ -708,8 +766,10 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         w->rows[seeds++].pair = e.pair;
     }
     /* everyone to the instant, then the rows */
-    for (i = 0; i < nb; ++i)
+    for (i = 0; i < nb; ++i) {
         cr_sync(&w->bodies[w->island[i]], &w->drift[w->island[i]], t);
+        cr_note_pre(w, w->island[i]);
+    }
     for (i = 0; i < seeds; ++i) {
         cr_pair *p = &w->pairs[w->rows[i].pair];
         if (cr_row_make(w, w->rows[i].pair, &w->rows[nr]))
@@ -728,6 +788,11 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
             (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING) &&
             !cr_gt(cr_contact_approach(w, &w->contacts[p->contact]),
                    cr_rest_speed(w, r->a, r->b))) {
+            /* its normal and points as they are now, not at the step
+             * start: a stale normal would take energy out of a pair that
+             * separates along the true one */
+            if (r->impact && !(w->contacts[p->contact].flags & CR_CONTACT_SOLVE))
+                cr_contact_remake(w, &w->contacts[p->contact]);
             w->contacts[p->contact].flags |= CR_CONTACT_SOLVE;
             if (w->bodies[r->a].type != CAROM_BODY_STATIC)
                 w->sbody[r->a].active = 1;
@@ -765,9 +830,22 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
     }
 #endif
     CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
-    if (!any)
-        return CAROM_OK; /* nothing changed course; the seeds wait for the
-                            next substep */
+    if (!any) {
+        /* nothing changed course: the seeds were not impacts after all;
+         * their contacts are the solver's */
+        for (i = 0; i < seeds && i < nr; ++i) {
+            const cr_pair *p = &w->pairs[w->rows[i].pair];
+            if (p->contact >= 0) {
+                w->contacts[p->contact].flags |= CR_CONTACT_SOLVE;
+                if (w->bodies[p->a].type != CAROM_BODY_STATIC)
+                    w->sbody[p->a].active = 1;
+                if (w->bodies[p->b].type != CAROM_BODY_STATIC)
+                    w->sbody[p->b].active = 1;
+                w->reorder = 1;
+            }
+        }
+        return CAROM_OK;
+    }
     cr_hold_contacts(w, nb, nr, t, t_end);
     /* the island's bodies changed course: search their pairs again */
     for (i = 0; i < nb; ++i)
@@ -801,24 +879,63 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
     return st;
 }
 
+/* The solver takes what the event loop leaves past its last resort: the
+ * contact of every pair still due this substep. */
+static carom_status cr_hand_over(carom_world *w, float t_end)
+{
+    while (w->heap_count > 0 && !cr_gt(w->heap[0].t, t_end)) {
+        cr_heap_entry e = w->heap[0];
+        cr_pair *p = &w->pairs[e.pair];
+        int c;
+        cr_heap_pop(w);
+        if (e.stamp != p->stamp)
+            continue;
+        cr_sync(&w->bodies[p->a], &w->drift[p->a], e.t);
+        cr_sync(&w->bodies[p->b], &w->drift[p->b], e.t);
+        c = cr_contact_add(w, e.pair);
+        if (c == -2)
+            return CAROM_ERR_CONTACT_CAPACITY;
+        if (c < 0)
+            continue;
+        w->contacts[c].flags |= CR_CONTACT_SOLVE;
+        if (w->bodies[p->a].type != CAROM_BODY_STATIC)
+            w->sbody[p->a].active = 1;
+        if (w->bodies[p->b].type != CAROM_BODY_STATIC)
+            w->sbody[p->b].active = 1;
+        w->reorder = 1;
+    }
+    return CAROM_OK;
+}
+
+/*
+ * The impacts of the substep up to t_end, in time order. After max_impacts
+ * in the step (a ball squeezed between a closing slab and a wall would
+ * meet infinitely many) the rest of the substep's impacts are plastic at
+ * their instants (nothing is passed through, no chain goes on for ever,
+ * momentum is kept and energy is only lost), and the next substeps are
+ * solved like the discrete method's, restitution included. After as many
+ * plastic instants again the solver takes what is left.
+ */
 carom_status cr_events_advance(carom_world *w, float t_end)
 {
     carom_status st = CAROM_OK;
-    int budget = w->def.max_impacts;
+    int budget = w->def.max_impacts, plastic = 0;
     w->reorder = 0;
     CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
-    while (st == CAROM_OK && w->heap_count > 0 && !w->budget_hit) {
+    while (st == CAROM_OK && w->heap_count > 0) {
         cr_heap_entry e = w->heap[0];
         cr_pair *p = &w->pairs[e.pair];
         if (cr_gt(e.t, t_end))
             break;
+        if (w->impacts_this_step >= budget)
+            w->budget_hit = 1;
+        if (w->budget_hit && plastic++ >= budget) {
+            st = cr_hand_over(w, t_end);
+            break;
+        }
         cr_heap_pop(w);
         if (e.stamp != p->stamp)
             continue;
-        if (w->impacts_this_step >= budget) {
-            w->budget_hit = 1;
-            break;
-        }
         st = cr_impact_instant(w, e.pair, e.t, t_end);
     }
     if (w->reorder)

@@ -22,6 +22,9 @@ typedef struct cr_drift {
     cr_v2 a;
     float alpha;
     int version;
+    cr_v2 v_pre;  /* events: velocity just before the impacts of the
+                     current instant (set when the body joins the island) */
+    float w_pre;
 } cr_drift;
 
 /* Pose and velocity of the body at local time s on its drift. */

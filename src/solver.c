@@ -324,11 +324,12 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
         }
         vn[k] = cr_velocity_vn(w, c, k);
         acc[k] = p->pn;
-        /* restitution (discrete method) uses the approach of the substep
-         * in which the point first pushes: nearer the instant of impact
-         * than the start of the step */
+        /* restitution uses the approach of the substep in which the point
+         * first pushes: nearer the instant of impact than the start of the
+         * step. Taken before the warm start, whose impulse is last step's
+         * support, not this approach */
         if (first && cr_eq(p->max_pn, 0.0f))
-            c->pts[k].rel_vn = vn[k];
+            c->pts[k].rel_vn = cr_point_vn(sa->v0, sa->w0, sb->v0, sb->w0, c, p);
     }
     cr_normal_rows(w, c, acc, bias, vn, cr_apply_velocity, cr_velocity_vn);
     for (k = 0; k < c->count; ++k) {
@@ -499,7 +500,11 @@ int cr_solver_restitution(carom_world *w)
         for (k = 0; k < c->count; ++k) {
             cr_contact_point *p = &c->pts[k];
             float vn, d, pn;
-            /* met faster than the rest speed, and pushed: an impact */
+            /* the bounce impulses are not kept for the warm start: that is
+             * last step's support of a resting contact, not its bounce */
+            /* met faster than the rest speed, and pushed: an impact. The
+             * bounce is not kept for the warm start, which is last step's
+             * support of a resting contact */
             if (!cr_lt(p->rel_vn, cr_neg(threshold)) || cr_eq(p->max_pn, 0.0f))
                 continue;
             hit = 1;
@@ -511,7 +516,6 @@ int cr_solver_restitution(carom_world *w)
                 d = cr_neg(cr_mul(p->mass_n, cr_add(vn, cr_mul(c->restitution, p->rel_vn))));
                 pn = cr_max(cr_add(p->pn, d), 0.0f);
                 d = cr_sub(pn, p->pn);
-                p->pn = pn;
                 cr_apply(A, B, cr_normal_lever(w, c->a, p->ra, c->n),
                          cr_normal_lever(w, c->b, p->rb, c->n), c->n, d);
                 ++bounced;

@@ -1,10 +1,15 @@
 /*
- * test_broadphase.c -- sort and sweep finds exactly the pairs that the
- * all-pairs bounding-box test finds, in (a, b) order.
+ * test_broadphase.c -- the grid finds exactly the pairs that the all-pairs
+ * box test finds, whatever the mix of sizes (walls larger than a cell,
+ * tiny and huge coordinates), and the pair sort gives (a, b) order.
  */
+#include <string.h>
+
 #include "test_util.h"
 
-#include "internal.h"
+#include "broadphase.h"
+
+#define N_MAX 400
 
 static unsigned lcg(unsigned *s)
 {
@@ -17,73 +22,158 @@ static float uniform(unsigned *s, float lo, float hi)
     return lo + (hi - lo) * (float)(lcg(s) & 0xffff) / 65535.0f;
 }
 
-START_TEST(test_sort_and_sweep_equals_all_pairs)
+typedef struct bp_fixture {
+    cr_box boxes[N_MAX];
+    int bodies[N_MAX];
+    int is_static[N_MAX];
+    cr_proxy proxies[N_MAX], tmp[N_MAX];
+    int start[2 * 1024 + 1], count[N_MAX + 1];
+    cr_pair pairs[N_MAX * N_MAX / 2], pair_tmp[N_MAX * N_MAX / 2];
+    cr_broadphase bp;
+} bp_fixture;
+
+static int accept_not_both_static(void *ctx, int a, int b)
 {
-    carom_world_def wd = carom_default_world_def();
-    tw t;
-    unsigned seed = 12345u;
-    int i, a, b, k = 0, expected = 0, n = 300;
-    wd.max_bodies = n;
-    wd.max_pairs = 20000;
-    t = tw_make(&wd);
-    for (i = 0; i < n; ++i) {
-        carom_body_def bd = carom_default_body_def();
-        if (i % 3 == 0) {
-            carom_body_def_set_box(&bd, uniform(&seed, 0.1f, 1.0f), uniform(&seed, 0.1f, 1.0f));
-            bd.rotation = carom_rot_from_angle(uniform(&seed, -3.0f, 3.0f));
-        } else {
-            bd.radius = uniform(&seed, 0.05f, 0.8f);
-        }
-        if (i % 17 == 0)
-            bd.type = CAROM_BODY_STATIC;
-        bd.position.x = uniform(&seed, -10.0f, 10.0f);
-        bd.position.y = uniform(&seed, -10.0f, 10.0f);
-        tw_add(&t, &bd);
-    }
-    cr_broadphase(t.w, 0.01f);
-    ck_assert_int_eq(t.w->pairs_dropped, 0);
-    for (a = 0; a < n; ++a) {
+    const bp_fixture *f = (const bp_fixture *)ctx;
+    return !(f->is_static[a] && f->is_static[b]);
+}
+
+static void fixture_init(bp_fixture *f, int n)
+{
+    int i;
+    f->bp.proxies = f->proxies;
+    f->bp.tmp = f->tmp;
+    f->bp.start = f->start;
+    f->bp.count = f->count;
+    f->bp.capacity = n;
+    f->bp.bucket_cap = cr_broadphase_bucket_cap(n);
+    ck_assert_int_le(f->bp.bucket_cap, 2 * 1024);
+    for (i = 0; i < n; ++i)
+        f->bodies[i] = i;
+}
+
+/* Compare the grid's pairs, sorted, with the all-pairs test. */
+static void check_against_all_pairs(bp_fixture *f, int n)
+{
+    long found;
+    int a, b, k = 0, expected = 0;
+    cr_broadphase_build(&f->bp, f->boxes, f->bodies, n);
+    found = cr_broadphase_pairs(&f->bp, f->boxes, accept_not_both_static, f,
+                                f->pairs, N_MAX * N_MAX / 2);
+    ck_assert_int_le(found, N_MAX * N_MAX / 2);
+    cr_pairs_sort(f->pairs, f->pair_tmp, (int)found, f->count, n);
+    for (a = 0; a < n; ++a)
         for (b = a + 1; b < n; ++b) {
-            cr_proxy pa, pb;
-            int overlap;
-            cr_body_bounds(&t.w->bodies[a], 0.01f, &pa);
-            cr_body_bounds(&t.w->bodies[b], 0.01f, &pb);
-            overlap = pa.lo_x <= pb.hi_x && pb.lo_x <= pa.hi_x &&
-                      pa.lo_y <= pb.hi_y && pb.lo_y <= pa.hi_y &&
-                      !(t.w->bodies[a].type == CAROM_BODY_STATIC &&
-                        t.w->bodies[b].type == CAROM_BODY_STATIC);
+            const cr_box *p = &f->boxes[a], *q = &f->boxes[b];
+            int overlap = p->lo_x <= q->hi_x && q->lo_x <= p->hi_x &&
+                          p->lo_y <= q->hi_y && q->lo_y <= p->hi_y &&
+                          !(f->is_static[a] && f->is_static[b]);
             if (!overlap)
                 continue;
             ++expected;
-            ck_assert_msg(k < t.w->pair_count, "missing pair (%d, %d)", a, b);
-            ck_assert_msg(t.w->pairs[k].a == a && t.w->pairs[k].b == b,
+            ck_assert_msg(k < found, "missing pair (%d, %d)", a, b);
+            ck_assert_msg(f->pairs[k].a == a && f->pairs[k].b == b,
                           "pair %d is (%d, %d), expected (%d, %d)", k,
-                          t.w->pairs[k].a, t.w->pairs[k].b, a, b);
+                          f->pairs[k].a, f->pairs[k].b, a, b);
             ++k;
         }
+    ck_assert_int_eq(found, expected);
+}
+
+static void random_boxes(bp_fixture *f, int n, unsigned seed, float spread,
+                         float size_lo, float size_hi)
+{
+    int i;
+    for (i = 0; i < n; ++i) {
+        float x = uniform(&seed, -spread, spread), y = uniform(&seed, -spread, spread);
+        float hx = uniform(&seed, size_lo, size_hi), hy = uniform(&seed, size_lo, size_hi);
+        f->boxes[i].lo_x = x - hx;
+        f->boxes[i].hi_x = x + hx;
+        f->boxes[i].lo_y = y - hy;
+        f->boxes[i].hi_y = y + hy;
+        f->is_static[i] = i % 17 == 0;
     }
-    ck_assert_int_eq(t.w->pair_count, expected);
-    ck_assert_int_gt(expected, 50); /* the scene really has overlaps */
-    tw_free(&t);
+}
+
+START_TEST(test_grid_equals_all_pairs_for_mixed_sizes)
+{
+    static bp_fixture f;
+    int n = 300;
+    fixture_init(&f, n);
+    random_boxes(&f, n, 12345u, 10.0f, 0.05f, 0.8f);
+    check_against_all_pairs(&f, n);
 }
 END_TEST
 
-START_TEST(test_pair_capacity_overflow_is_counted_not_written)
+START_TEST(test_grid_finds_pairs_of_walls_larger_than_a_cell)
+{
+    static bp_fixture f;
+    int n = 200;
+    fixture_init(&f, n);
+    random_boxes(&f, n, 777u, 5.0f, 0.05f, 0.15f);
+    /* a floor and two walls, far larger than the cell */
+    f.boxes[0].lo_x = -6.0f; f.boxes[0].hi_x = 6.0f; f.boxes[0].lo_y = -5.2f; f.boxes[0].hi_y = -4.9f;
+    f.boxes[1].lo_x = -5.2f; f.boxes[1].hi_x = -4.9f; f.boxes[1].lo_y = -6.0f; f.boxes[1].hi_y = 6.0f;
+    f.boxes[2].lo_x = 4.9f; f.boxes[2].hi_x = 5.2f; f.boxes[2].lo_y = -6.0f; f.boxes[2].hi_y = 6.0f;
+    f.is_static[0] = f.is_static[1] = f.is_static[2] = 1;
+    check_against_all_pairs(&f, n);
+}
+END_TEST
+
+START_TEST(test_grid_handles_huge_and_negative_coordinates)
+{
+    static bp_fixture f;
+    int n = 100;
+    fixture_init(&f, n);
+    random_boxes(&f, n, 99u, 5.0e7f, 1.0e6f, 2.0e7f);
+    check_against_all_pairs(&f, n);
+    random_boxes(&f, n, 98u, 0.001f, 1.0e-5f, 2.0e-4f);
+    check_against_all_pairs(&f, n);
+}
+END_TEST
+
+START_TEST(test_pair_overflow_is_counted_not_written)
+{
+    static bp_fixture f;
+    int i, n = 4;
+    long found;
+    fixture_init(&f, n);
+    for (i = 0; i < n; ++i) { /* all overlap: 6 pairs */
+        f.boxes[i].lo_x = 0.1f * (float)i;
+        f.boxes[i].hi_x = 0.1f * (float)i + 1.0f;
+        f.boxes[i].lo_y = 0.0f;
+        f.boxes[i].hi_y = 1.0f;
+        f.is_static[i] = 0;
+    }
+    f.pairs[2].a = -7; /* a guard just past the capacity */
+    cr_broadphase_build(&f.bp, f.boxes, f.bodies, n);
+    found = cr_broadphase_pairs(&f.bp, f.boxes, accept_not_both_static, &f, f.pairs, 2);
+    ck_assert_int_eq(found, 6);
+    ck_assert_int_eq(f.pairs[2].a, -7);
+}
+END_TEST
+
+/* Through the world: a pile denser than the default pair capacity fails
+ * with CAROM_ERR_PAIR_CAPACITY and leaves the world as it was. */
+START_TEST(test_world_pair_capacity_is_a_clean_failure)
 {
     carom_world_def wd = carom_default_world_def();
     carom_body_def bd = carom_default_body_def();
+    carom_body_state before, after;
     tw t;
     int i;
-    wd.max_bodies = 4;
-    wd.max_pairs = 2;
+    wd.max_bodies = 10;
+    wd.max_pairs = 5;
     t = tw_make(&wd);
-    for (i = 0; i < 4; ++i) {
-        bd.position.x = 0.1f * (float)i; /* all overlap: 6 pairs */
+    for (i = 0; i < 10; ++i) {
+        bd.position.x = 0.1f * (float)i; /* all 45 pairs overlap */
         tw_add(&t, &bd);
     }
-    ck_assert_int_eq(cr_broadphase(t.w, 0.0f), 6);
-    ck_assert_int_eq(t.w->pair_count, 2);
-    ck_assert_int_eq(t.w->pairs_dropped, 4);
+    before = tw_state(&t, 3);
+    ck_assert_int_eq(carom_world_step(t.w), CAROM_ERR_PAIR_CAPACITY);
+    after = tw_state(&t, 3);
+    ck_assert(memcmp(&before, &after, sizeof before) == 0);
+    ck_assert_int_eq(carom_world_step_count(t.w), 0);
     tw_free(&t);
 }
 END_TEST
@@ -91,9 +181,12 @@ END_TEST
 Suite *suite_broadphase(void)
 {
     Suite *s = suite_create("broadphase");
-    TCase *tc = tcase_create("sweep");
-    tcase_add_test(tc, test_sort_and_sweep_equals_all_pairs);
-    tcase_add_test(tc, test_pair_capacity_overflow_is_counted_not_written);
+    TCase *tc = tcase_create("grid");
+    tcase_add_test(tc, test_grid_equals_all_pairs_for_mixed_sizes);
+    tcase_add_test(tc, test_grid_finds_pairs_of_walls_larger_than_a_cell);
+    tcase_add_test(tc, test_grid_handles_huge_and_negative_coordinates);
+    tcase_add_test(tc, test_pair_overflow_is_counted_not_written);
+    tcase_add_test(tc, test_world_pair_capacity_is_a_clean_failure);
     suite_add_tcase(s, tc);
     return s;
 }

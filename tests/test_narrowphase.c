@@ -4,36 +4,49 @@
  */
 #include "test_util.h"
 
-#include "internal.h"
+#include "narrowphase.h"
 
-static cr_body make_circle(float x, float y, float r)
+/* A shape at a pose. */
+typedef struct tshape {
+    cr_body b;
+    cr_body_info info;
+} tshape;
+
+static tshape make_circle(float x, float y, float r)
 {
     carom_body_def bd = carom_default_body_def();
-    cr_body b;
+    tshape t;
     bd.radius = r;
     bd.position.x = x;
     bd.position.y = y;
-    ck_assert_int_eq(cr_body_build(&bd, &b), CAROM_OK);
-    return b;
+    ck_assert_int_eq(cr_body_build(&bd, &t.b, &t.info), CAROM_OK);
+    return t;
 }
 
-static cr_body make_box(float x, float y, float hx, float hy, float angle)
+static tshape make_box(float x, float y, float hx, float hy, float angle)
 {
     carom_body_def bd = carom_default_body_def();
-    cr_body b;
+    tshape t;
     carom_body_def_set_box(&bd, hx, hy);
     bd.position.x = x;
     bd.position.y = y;
     bd.rotation = carom_rot_from_angle(angle);
-    ck_assert_int_eq(cr_body_build(&bd, &b), CAROM_OK);
-    return b;
+    ck_assert_int_eq(cr_body_build(&bd, &t.b, &t.info), CAROM_OK);
+    return t;
+}
+
+/* The manifold of a and b with reach `margin`; no face tolerance. */
+static int collide(const tshape *a, const tshape *b, float margin, cr_manifold *m)
+{
+    return cr_collide(&a->info.shape, a->b.x, a->b.q, &b->info.shape, b->b.x,
+                      b->b.q, margin, 0.0f, m) > 0;
 }
 
 START_TEST(test_circle_circle_overlap_normal_and_midpoint)
 {
-    cr_body a = make_circle(0, 0, 1), b = make_circle(3, 4, 4.5f);
+    tshape a = make_circle(0, 0, 1), b = make_circle(3, 4, 4.5f);
     cr_manifold m;
-    ck_assert_int_eq(cr_collide(&a, &b, 0.0f, &m), 1);
+    ck_assert_int_eq(collide(&a, &b, 0.0f, &m), 1);
     ck_assert_int_eq(m.count, 1);
     ck_assert_close(m.n.x, 0.6, 1e-6);
     ck_assert_close(m.n.y, 0.8, 1e-6);
@@ -46,19 +59,19 @@ END_TEST
 
 START_TEST(test_circle_circle_apart_beyond_margin_is_no_contact)
 {
-    cr_body a = make_circle(0, 0, 1), b = make_circle(2.1f, 0, 1);
+    tshape a = make_circle(0, 0, 1), b = make_circle(2.1f, 0, 1);
     cr_manifold m;
-    ck_assert_int_eq(cr_collide(&a, &b, 0.05f, &m), 0);
-    ck_assert_int_eq(cr_collide(&a, &b, 0.2f, &m), 1);
+    ck_assert_int_eq(collide(&a, &b, 0.05f, &m), 0);
+    ck_assert_int_eq(collide(&a, &b, 0.2f, &m), 1);
     ck_assert_close(m.pts[0].sep, 0.1, 1e-6);
 }
 END_TEST
 
 START_TEST(test_box_circle_face_region)
 {
-    cr_body box = make_box(0, 0, 1, 1, 0), c = make_circle(0.3f, 1.4f, 0.5f);
+    tshape box = make_box(0, 0, 1, 1, 0), c = make_circle(0.3f, 1.4f, 0.5f);
     cr_manifold m;
-    ck_assert_int_eq(cr_collide(&box, &c, 0.0f, &m), 1);
+    ck_assert_int_eq(collide(&box, &c, 0.0f, &m), 1);
     ck_assert_close(m.n.x, 0.0, 1e-6);
     ck_assert_close(m.n.y, 1.0, 1e-6);
     ck_assert_close(m.pts[0].sep, -0.1, 1e-6);
@@ -70,11 +83,11 @@ END_TEST
 START_TEST(test_box_circle_vertex_region)
 {
     /* corner (1, 1); centre at (1.3, 1.4): distance 0.5 along (0.6, 0.8) */
-    cr_body box = make_box(0, 0, 1, 1, 0), c = make_circle(1.3f, 1.4f, 0.45f);
+    tshape box = make_box(0, 0, 1, 1, 0), c = make_circle(1.3f, 1.4f, 0.45f);
     cr_manifold m;
-    ck_assert_int_eq(cr_collide(&box, &c, 0.0f, &m), 0); /* gap 0.05 */
+    ck_assert_int_eq(collide(&box, &c, 0.0f, &m), 0); /* gap 0.05 */
     c = make_circle(1.3f, 1.4f, 0.55f);
-    ck_assert_int_eq(cr_collide(&box, &c, 0.0f, &m), 1);
+    ck_assert_int_eq(collide(&box, &c, 0.0f, &m), 1);
     ck_assert_close(m.n.x, 0.6, 1e-6);
     ck_assert_close(m.n.y, 0.8, 1e-6);
     ck_assert_close(m.pts[0].sep, -0.05, 1e-6);
@@ -83,9 +96,9 @@ END_TEST
 
 START_TEST(test_circle_box_order_reverses_the_normal)
 {
-    cr_body box = make_box(0, 0, 1, 1, 0), c = make_circle(0.3f, 1.4f, 0.5f);
+    tshape box = make_box(0, 0, 1, 1, 0), c = make_circle(0.3f, 1.4f, 0.5f);
     cr_manifold m;
-    ck_assert_int_eq(cr_collide(&c, &box, 0.0f, &m), 1);
+    ck_assert_int_eq(collide(&c, &box, 0.0f, &m), 1);
     ck_assert_close(m.n.y, -1.0, 1e-6);
     ck_assert_close(m.pts[0].sep, -0.1, 1e-6);
 }
@@ -93,9 +106,9 @@ END_TEST
 
 START_TEST(test_circle_centre_inside_box_pushes_out_of_nearest_face)
 {
-    cr_body box = make_box(0, 0, 2, 1, 0), c = make_circle(1.8f, 0.1f, 0.1f);
+    tshape box = make_box(0, 0, 2, 1, 0), c = make_circle(1.8f, 0.1f, 0.1f);
     cr_manifold m;
-    ck_assert_int_eq(cr_collide(&box, &c, 0.0f, &m), 1);
+    ck_assert_int_eq(collide(&box, &c, 0.0f, &m), 1);
     ck_assert_close(m.n.x, 1.0, 1e-6);
     ck_assert_close(m.pts[0].sep, -0.2 - 0.1, 1e-6);
 }
@@ -103,10 +116,10 @@ END_TEST
 
 START_TEST(test_box_on_box_gives_two_points_on_the_face)
 {
-    cr_body ground = make_box(0, 0, 2, 0.5f, 0), top = make_box(0.3f, 0.9f, 0.5f, 0.5f, 0);
+    tshape ground = make_box(0, 0, 2, 0.5f, 0), top = make_box(0.3f, 0.9f, 0.5f, 0.5f, 0);
     cr_manifold m;
     int i;
-    ck_assert_int_eq(cr_collide(&ground, &top, 0.0f, &m), 1);
+    ck_assert_int_eq(collide(&ground, &top, 0.0f, &m), 1);
     ck_assert_int_eq(m.count, 2);
     ck_assert_close(m.n.x, 0.0, 1e-6);
     ck_assert_close(m.n.y, 1.0, 1e-6);
@@ -122,10 +135,10 @@ END_TEST
 START_TEST(test_tilted_box_corner_gives_one_point)
 {
     /* square of half side 0.5 at 45 deg: corner 0.7071 below its centre */
-    cr_body ground = make_box(0, 0, 2, 0.5f, 0);
-    cr_body top = make_box(0, 0.5f + 0.70710678f - 0.02f, 0.5f, 0.5f, 0.78539816f);
+    tshape ground = make_box(0, 0, 2, 0.5f, 0);
+    tshape top = make_box(0, 0.5f + 0.70710678f - 0.02f, 0.5f, 0.5f, 0.78539816f);
     cr_manifold m;
-    ck_assert_int_eq(cr_collide(&ground, &top, 0.0f, &m), 1);
+    ck_assert_int_eq(collide(&ground, &top, 0.0f, &m), 1);
     ck_assert_int_eq(m.count, 1);
     ck_assert_close(m.n.y, 1.0, 1e-6);
     ck_assert_close(m.pts[0].sep, -0.02, 1e-5);
@@ -135,22 +148,121 @@ END_TEST
 
 START_TEST(test_separated_polygons_are_no_contact)
 {
-    cr_body a = make_box(0, 0, 1, 1, 0), b = make_box(2.5f, 0, 1, 1, 0.3f);
+    tshape a = make_box(0, 0, 1, 1, 0), b = make_box(2.5f, 0, 1, 1, 0.3f);
     cr_manifold m;
-    ck_assert_int_eq(cr_collide(&a, &b, 0.0f, &m), 0);
+    ck_assert_int_eq(collide(&a, &b, 0.0f, &m), 0);
 }
 END_TEST
 
 START_TEST(test_box_box_side_by_side_normal_points_from_a_to_b)
 {
-    cr_body a = make_box(0, 0, 1, 1, 0), b = make_box(1.95f, 0.2f, 1, 1, 0);
+    tshape a = make_box(0, 0, 1, 1, 0), b = make_box(1.95f, 0.2f, 1, 1, 0);
     cr_manifold m;
-    ck_assert_int_eq(cr_collide(&a, &b, 0.0f, &m), 1);
+    ck_assert_int_eq(collide(&a, &b, 0.0f, &m), 1);
     ck_assert_close(m.n.x, 1.0, 1e-6);
     ck_assert_int_eq(m.count, 2);
     ck_assert_close(m.pts[0].sep, -0.05, 1e-5);
-    ck_assert_int_eq(cr_collide(&b, &a, 0.0f, &m), 1);
+    ck_assert_int_eq(collide(&b, &a, 0.0f, &m), 1);
     ck_assert_close(m.n.x, -1.0, 1e-6);
+}
+END_TEST
+
+/* The manifold depends on the relative pose only: the same stacked pair at
+ * x = 0 and x = 7.77 gives the same normal, separations and ids (to the
+ * rounding of the relative position), so a stack placed anywhere behaves
+ * the same. */
+START_TEST(test_manifold_does_not_depend_on_where_the_pair_sits)
+{
+    const float xs[3] = {0.0f, 1.85f, 7.77f};
+    cr_manifold ref, m;
+    int i, k;
+    for (i = 0; i < 3; ++i) {
+        tshape low = make_box(xs[i], 0.5f, 0.5f, 0.5f, 0);
+        tshape up = make_box(xs[i], 1.5f, 0.5f, 0.5f, 0);
+        ck_assert(collide(&low, &up, 0.01f, &m));
+        ck_assert_int_eq(m.count, 2);
+        if (i == 0) {
+            ref = m;
+            continue;
+        }
+        ck_assert(m.n.x == ref.n.x && m.n.y == ref.n.y);
+        for (k = 0; k < 2; ++k) {
+            ck_assert_uint_eq(m.pts[k].id, ref.pts[k].id);
+            ck_assert_close(m.pts[k].sep, ref.pts[k].sep, 1e-6);
+            ck_assert_close(m.pts[k].p.x - xs[i], ref.pts[k].p.x, 1e-6);
+        }
+    }
+}
+END_TEST
+
+/* Exactly aligned equal faces: both SAT separations are equal, and the
+ * reference face is A's in both orders, so the feature ids read the same
+ * (feature of a, feature of b) whichever body is first. */
+START_TEST(test_aligned_faces_keep_the_first_body_as_reference)
+{
+    tshape low = make_box(3.7f, 0.5f, 0.5f, 0.5f, 0);
+    tshape up = make_box(3.7f, 1.5f, 0.5f, 0.5f, 0);
+    cr_manifold m1, m2;
+    ck_assert(collide(&low, &up, 0.01f, &m1));
+    ck_assert(collide(&up, &low, 0.01f, &m2));
+    ck_assert_int_eq(m1.count, 2);
+    ck_assert_int_eq(m2.count, 2);
+    ck_assert(m1.n.y == 1.0f && m2.n.y == -1.0f);
+    /* ids of m2 are (feature of up, feature of low): byte-swapped m1 ids */
+    ck_assert(((m1.pts[0].id >> 8) | ((m1.pts[0].id & 0xffu) << 8)) == m2.pts[0].id ||
+              ((m1.pts[0].id >> 8) | ((m1.pts[0].id & 0xffu) << 8)) == m2.pts[1].id);
+}
+END_TEST
+
+/* A small box's face inside a larger box's face: the incident face is cut
+ * by the reference face's side planes, and the two points must be mirror
+ * images of each other to the last bit (a head-on face impact must give no
+ * spin from rounding: the pi billiard with boxes depends on it). */
+START_TEST(test_clipped_points_of_a_symmetric_pair_are_exact_mirrors)
+{
+    tshape small = make_box(40.05f, 0, 0.05f, 0.05f, 0);
+    tshape big = make_box(40.2f, 0, 0.1f, 0.1f, 0);
+    cr_manifold m;
+    ck_assert(collide(&small, &big, 0.01f, &m));
+    ck_assert_int_eq(m.count, 2);
+    ck_assert(m.n.x == 1.0f && m.n.y == 0.0f);
+    ck_assert(m.pts[0].p.y == -m.pts[1].p.y);
+    ck_assert(m.pts[0].p.x == m.pts[1].p.x);
+    ck_assert(m.pts[0].sep == m.pts[1].sep);
+    /* and the body's centre is exactly its box centre */
+    ck_assert(small.b.x.y == 0.0f && small.info.shape.local_center.y == 0.0f);
+}
+END_TEST
+
+/* Speculative points: polygons apart by less than the reach give a
+ * manifold with positive separations (the solver stops them exactly where
+ * they meet); beyond the reach, none. */
+START_TEST(test_polygons_within_reach_give_speculative_points)
+{
+    tshape low = make_box(0, 0, 1, 0.5f, 0), up = make_box(0.2f, 1.05f, 0.5f, 0.5f, 0);
+    cr_manifold m;
+    ck_assert(!collide(&low, &up, 0.01f, &m)); /* gap 0.05 */
+    ck_assert(collide(&low, &up, 0.1f, &m));
+    ck_assert_int_eq(m.count, 2);
+    ck_assert_close(m.pts[0].sep, 0.05, 1e-6);
+    ck_assert_close(m.pts[1].sep, 0.05, 1e-6);
+}
+END_TEST
+
+/* The separation bound for conservative advancement: exact for pairs with
+ * a circle, the SAT separation (never more than the distance) for two
+ * polygons. */
+START_TEST(test_separation_is_a_lower_bound_of_the_distance)
+{
+    tshape a = make_circle(0, 0, 0.5f), b = make_circle(3, 4, 1);
+    tshape box = make_box(0, 0, 1, 1, 0), far = make_box(3, 3, 0.5f, 0.5f, 0);
+    ck_assert_close(cr_separation(&a.info.shape, a.b.x, a.b.q, &b.info.shape, b.b.x, b.b.q),
+                    5.0 - 1.5, 1e-6);
+    /* corners (1, 1) and (2.5, 2.5): distance 1.5 sqrt 2 = 2.12; the SAT
+     * separation along the faces is 1.5 */
+    ck_assert_close(cr_separation(&box.info.shape, box.b.x, box.b.q, &far.info.shape,
+                                  far.b.x, far.b.q),
+                    1.5, 1e-6);
 }
 END_TEST
 
@@ -168,6 +280,11 @@ Suite *suite_narrowphase(void)
     tcase_add_test(tc, test_tilted_box_corner_gives_one_point);
     tcase_add_test(tc, test_separated_polygons_are_no_contact);
     tcase_add_test(tc, test_box_box_side_by_side_normal_points_from_a_to_b);
+    tcase_add_test(tc, test_manifold_does_not_depend_on_where_the_pair_sits);
+    tcase_add_test(tc, test_aligned_faces_keep_the_first_body_as_reference);
+    tcase_add_test(tc, test_clipped_points_of_a_symmetric_pair_are_exact_mirrors);
+    tcase_add_test(tc, test_polygons_within_reach_give_speculative_points);
+    tcase_add_test(tc, test_separation_is_a_lower_bound_of_the_distance);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -224,8 +224,14 @@ START_TEST(test_scene_header_only_gives_defaults)
     ck_assert_int_eq(s.world.max_pairs, wd.max_pairs);
     ck_assert_float_eq(s.world.rest_speed, wd.rest_speed);
     ck_assert_float_eq(s.world.linear_slop, wd.linear_slop);
-    ck_assert_int_eq(s.world.velocity_iterations, wd.velocity_iterations);
-    ck_assert_int_eq(s.world.position_iterations, wd.position_iterations);
+    ck_assert_int_eq(s.world.substeps, wd.substeps);
+    ck_assert_int_eq(s.world.iterations, wd.iterations);
+    ck_assert_int_eq(s.world.relax_iterations, wd.relax_iterations);
+    ck_assert_int_eq(s.world.max_contacts, wd.max_contacts);
+    ck_assert_int_eq(s.world.max_impacts, wd.max_impacts);
+    ck_assert_float_eq(s.world.length_unit, wd.length_unit);
+    ck_assert_int_eq(s.world.enable_sleep, wd.enable_sleep);
+    ck_assert_float_eq(s.world.sleep_time, wd.sleep_time);
     scene_free(&s);
 }
 END_TEST
@@ -314,14 +320,21 @@ END_TEST
 START_TEST(test_scene_optional_world_keys)
 {
     scene s;
-    parse_ok(HDR "world rest-speed=0.25 slop=0.001 velocity-iterations=3 "
-                 "position-iterations=0 max-events=7 max-pairs=0 steps=0 "
-                 "gravity=1.5,2 dt=0.5\n",
+    parse_ok(HDR "world rest-speed=0.25 slop=0.001 substeps=8 iterations=3 "
+                 "relax-iterations=0 max-events=7 max-pairs=0 max-contacts=9 "
+                 "max-impacts=11 length-unit=0.2 sleep=off sleep-time=1.5 "
+                 "steps=0 gravity=1.5,2 dt=0.5\n",
              &s);
     ck_assert_float_eq(s.world.rest_speed, 0.25f);
     ck_assert_float_eq(s.world.linear_slop, 0.001f);
-    ck_assert_int_eq(s.world.velocity_iterations, 3);
-    ck_assert_int_eq(s.world.position_iterations, 0);
+    ck_assert_int_eq(s.world.substeps, 8);
+    ck_assert_int_eq(s.world.iterations, 3);
+    ck_assert_int_eq(s.world.relax_iterations, 0);
+    ck_assert_int_eq(s.world.max_contacts, 9);
+    ck_assert_int_eq(s.world.max_impacts, 11);
+    ck_assert_float_eq(s.world.length_unit, 0.2f);
+    ck_assert_int_eq(s.world.enable_sleep, 0);
+    ck_assert_float_eq(s.world.sleep_time, 1.5f);
     ck_assert_int_eq(s.world.max_events, 7);
     ck_assert_int_eq(s.world.max_pairs, 0);
     ck_assert_int_eq(s.steps, 0);
@@ -748,14 +761,24 @@ START_TEST(test_scene_rejects_out_of_range_world_values)
     expect_world_error("dt=-0.01", "dt: must be > 0, got -0.01");
     expect_world_error("steps=-1", "steps: must be in [0, ");
     expect_world_error("steps=1000000001", "steps: must be in [0, ");
-    expect_world_error("rest-speed=-1", "rest-speed: must be >= 0");
-    expect_world_error("slop=-0.1", "slop: must be >= 0");
-    expect_world_error("velocity-iterations=-1", "velocity-iterations: must be in [0, 1000], got -1");
-    expect_world_error("velocity-iterations=1001", "velocity-iterations: must be in [0, 1000]");
-    expect_world_error("position-iterations=-1", "position-iterations: must be in [0, 1000]");
-    expect_world_error("max-events=0", "max-events: must be in [1, 16777216]");
-    expect_world_error("max-pairs=-1", "max-pairs: must be in [0, 16777216]");
-    expect_world_error("max-events=16777217", "max-events: must be in [1, 16777216]");
+    expect_world_error("rest-speed=-1", "rest-speed: must be >= 0 or auto");
+    expect_world_error("slop=-0.1", "slop: must be >= 0 or auto");
+    expect_world_error("length-unit=0", "length-unit: must be > 0 or auto");
+    expect_world_error("substeps=0", "substeps: must be in [1, 64], got 0");
+    expect_world_error("substeps=65", "substeps: must be in [1, 64]");
+    expect_world_error("iterations=0", "iterations: must be in [1, 64]");
+    expect_world_error("relax-iterations=-1", "relax-iterations: must be in [0, 64]");
+    expect_world_error("sleep=maybe", "sleep: want on or off, got 'maybe'");
+    expect_world_error("sleep-time=-1", "sleep-time: must be >= 0");
+    expect_world_error("max-events=-1", "max-events: must be in [0, 67108864]");
+    expect_world_error("max-pairs=-1", "max-pairs: must be in [0, 67108864]");
+    expect_world_error("max-contacts=67108865", "max-contacts: must be in [0, 67108864]");
+    expect_world_error("max-impacts=-2", "max-impacts: must be in [0, 1073741824]");
+    /* the old solver's keys say what replaced them */
+    expect_world_error("velocity-iterations=10",
+                       "velocity-iterations: no longer a setting; the contact solver "
+                       "takes substeps=, iterations= and relax-iterations=");
+    expect_world_error("position-iterations=3", "position-iterations: no longer a setting");
 }
 END_TEST
 

@@ -125,7 +125,7 @@ START_TEST(test_note_stepping_example1_contact_on_step_boundary)
     int i;
     for (i = 0; i < 3; ++i) {
         double cr = crs[i];
-        tw t = tw_pair(CAROM_METHOD_DISCRETE, 1.0f, CAROM_DEFAULT_REST_SPEED,
+        tw t = tw_pair(CAROM_METHOD_DISCRETE, 1.0f, CAROM_AUTO,
                        1.0f, (float)cr, 0.0f, -2.0f, 1.0f, 0.0f, 2.0f, -1.0f);
         int a = 0, b = 1;
         tw_steps(&t, 1);

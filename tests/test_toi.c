@@ -10,51 +10,75 @@
 
 #include "test_util.h"
 
-#include "internal.h"
+#include "narrowphase.h"
+#include "toi.h"
 
 Suite *suite_toi(void);
 
 /* ---- helpers ------------------------------------------------------------- */
 
-/* Events fields the time of impact reads: synchronised at 0, given drift. */
-static void set_motion(cr_body *b, double vx, double vy, double w, double ax,
-                       double ay)
+/* A body as the time of impact sees it: its hot state, its shape and its
+ * drift (synchronised at 0). */
+typedef struct tb {
+    cr_body b;
+    cr_body_info info;
+    cr_drift d;
+} tb;
+
+static cr_mover mover(const tb *t)
 {
-    b->t_sync = 0.0f;
-    b->vel.x = (float)vx;
-    b->vel.y = (float)vy;
-    b->w = (float)w;
-    b->acc_d.x = (float)ax;
-    b->acc_d.y = (float)ay;
-    b->alpha_d = 0.0f;
+    cr_mover m;
+    m.s = &t->info.shape;
+    m.b = &t->b;
+    m.d = &t->d;
+    return m;
 }
 
-static cr_body make_circle(double x, double y, double r, int type)
+static int toi_of(const tb *a, const tb *b, float t0, float t1, float tol, float *out)
+{
+    cr_mover ma = mover(a), mb = mover(b);
+    return cr_time_of_impact(&ma, &mb, t0, t1, tol, out);
+}
+
+static void set_motion(tb *t, double vx, double vy, double w, double ax,
+                       double ay)
+{
+    t->d.t = 0.0f;
+    t->b.v.x = (float)vx;
+    t->b.v.y = (float)vy;
+    t->b.w = (float)w;
+    t->d.a.x = (float)ax;
+    t->d.a.y = (float)ay;
+    t->d.alpha = 0.0f;
+    t->d.version = 0;
+}
+
+static tb make_circle(double x, double y, double r, int type)
 {
     carom_body_def bd = carom_default_body_def();
-    cr_body b;
+    tb t;
     bd.type = (carom_body_type)type;
     bd.radius = (float)r;
     bd.position.x = (float)x;
     bd.position.y = (float)y;
-    ck_assert_int_eq(cr_body_build(&bd, &b), CAROM_OK);
-    set_motion(&b, 0, 0, 0, 0, 0);
-    return b;
+    ck_assert_int_eq(cr_body_build(&bd, &t.b, &t.info), CAROM_OK);
+    set_motion(&t, 0, 0, 0, 0, 0);
+    return t;
 }
 
-static cr_body make_box(double x, double y, double hx, double hy,
-                        double angle, int type)
+static tb make_box(double x, double y, double hx, double hy,
+                   double angle, int type)
 {
     carom_body_def bd = carom_default_body_def();
-    cr_body b;
+    tb t;
     bd.type = (carom_body_type)type;
     carom_body_def_set_box(&bd, (float)hx, (float)hy);
     bd.position.x = (float)x;
     bd.position.y = (float)y;
     bd.rotation = carom_rot_from_angle((float)angle);
-    ck_assert_int_eq(cr_body_build(&bd, &b), CAROM_OK);
-    set_motion(&b, 0, 0, 0, 0, 0);
-    return b;
+    ck_assert_int_eq(cr_body_build(&bd, &t.b, &t.info), CAROM_OK);
+    set_motion(&t, 0, 0, 0, 0, 0);
+    return t;
 }
 
 /* Earliest root of c0 + c1 s + c2 s^2 where it decreases, in double, by
@@ -120,30 +144,33 @@ static void circle_quartic(double px, double py, double ux, double uy,
     c[4] = (float)(qx * qx + qy * qy);
 }
 
-/* The drift of a body, in double: centre at time t (t_sync = 0). */
-static void centre_d(const cr_body *b, double t, double *x, double *y)
+/* The drift of a body, in double: centre at time t (synchronised at 0). */
+static void centre_d(const tb *t_, double t, double *x, double *y)
 {
-    *x = (double)b->x.x + (double)b->vel.x * t + 0.5 * (double)b->acc_d.x * t * t;
-    *y = (double)b->x.y + (double)b->vel.y * t + 0.5 * (double)b->acc_d.y * t * t;
+    const cr_body *b = &t_->b;
+    *x = (double)b->x.x + (double)b->v.x * t + 0.5 * (double)t_->d.a.x * t * t;
+    *y = (double)b->x.y + (double)b->v.y * t + 0.5 * (double)t_->d.a.y * t * t;
 }
 
-static double circles_gap_d(const cr_body *a, const cr_body *b, double t)
+static double circles_gap_d(const tb *a, const tb *b, double t)
 {
     double ax, ay, bx, by;
     centre_d(a, t, &ax, &ay);
     centre_d(b, t, &bx, &by);
-    return hypot(bx - ax, by - ay) - ((double)a->radius + (double)b->radius);
+    return hypot(bx - ax, by - ay) -
+           ((double)a->info.shape.radius + (double)b->info.shape.radius);
 }
 
 /* World vertices of a polygon at time t in double, turning at constant w. */
-static void polygon_d(const cr_body *b, double t, double vx[], double vy[])
+static void polygon_d(const tb *t_, double t, double vx[], double vy[])
 {
+    const cr_body *b = &t_->b;
     double cx, cy, ang = atan2((double)b->q.s, (double)b->q.c) + (double)b->w * t;
     double co = cos(ang), si = sin(ang);
     int i;
-    centre_d(b, t, &cx, &cy);
-    for (i = 0; i < b->count; ++i) {
-        double lx = b->verts[i].x, ly = b->verts[i].y;
+    centre_d(t_, t, &cx, &cy);
+    for (i = 0; i < t_->info.shape.count; ++i) {
+        double lx = t_->info.shape.verts[i].x, ly = t_->info.shape.verts[i].y;
         vx[i] = cx + co * lx - si * ly;
         vy[i] = cy + si * lx + co * ly;
     }
@@ -169,24 +196,26 @@ static double sat_one_d(int np, const double px[], const double py[], int nq,
 }
 
 /* Separating-axis separation of two polygons at time t (> 0: apart). */
-static double polygons_sat_d(const cr_body *a, const cr_body *b, double t)
+static double polygons_sat_d(const tb *a, const tb *b, double t)
 {
     double ax[CAROM_MAX_POLYGON_VERTICES], ay[CAROM_MAX_POLYGON_VERTICES];
     double bx[CAROM_MAX_POLYGON_VERTICES], by[CAROM_MAX_POLYGON_VERTICES];
     double s1, s2;
     polygon_d(a, t, ax, ay);
     polygon_d(b, t, bx, by);
-    s1 = sat_one_d(a->count, ax, ay, b->count, bx, by);
-    s2 = sat_one_d(b->count, bx, by, a->count, ax, ay);
+    s1 = sat_one_d(a->info.shape.count, ax, ay, b->info.shape.count, bx, by);
+    s2 = sat_one_d(b->info.shape.count, bx, by, a->info.shape.count, ax, ay);
     return s1 > s2 ? s1 : s2;
 }
 
-/* A posed copy of a body at time t, for cr_separation. */
-static cr_body posed(const cr_body *b, float t)
+/* cr_separation of the two bodies posed at time t on their drifts. */
+static float separation_at(const tb *a, const tb *b, float t)
 {
-    cr_body c = *b;
-    cr_body_pose(b, t, &c.x, &c.q);
-    return c;
+    cr_v2 xa, xb;
+    cr_rot qa, qb;
+    cr_pose_at(&a->b, &a->d, t, &xa, &qa);
+    cr_pose_at(&b->b, &b->d, t, &xb, &qb);
+    return cr_separation(&a->info.shape, xa, qa, &b->info.shape, xb, qb);
 }
 
 /* Deterministic pseudo-random numbers in [lo, hi). */
@@ -479,32 +508,32 @@ END_TEST
 START_TEST(test_toi_circles_head_on_gap_over_closing_speed)
 {
     /* gap 3 - 0.5 - 0.25 = 2.25, closing at 2 + 1 = 3 */
-    cr_body a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
-    cr_body b = make_circle(3, 0, 0.25, CAROM_BODY_DYNAMIC);
+    tb a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
+    tb b = make_circle(3, 0, 0.25, CAROM_BODY_DYNAMIC);
     float toi = -1.0f;
     set_motion(&a, 2, 0, 0, 0, 0);
     set_motion(&b, -1, 0, 0, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&a, &b, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, 2.25 / 3.0, 1e-6);
-    ck_assert_int_eq(cr_time_of_impact(&b, &a, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&b, &a, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, 2.25 / 3.0, 1e-6);
     /* not within [0, 0.7] */
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 0.7f, 1e-4f, 1.0f /* dt */, &toi), 0);
+    ck_assert_int_eq(toi_of(&a, &b, 0.0f, 0.7f, 1e-4f, &toi), 0);
 }
 END_TEST
 
 START_TEST(test_toi_is_a_step_time_when_searching_from_a_later_t0)
 {
     /* same head-on pair, searched from t0 = 0.25: still 0.75, not 0.5 */
-    cr_body a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
-    cr_body b = make_circle(3, 0, 0.25, CAROM_BODY_DYNAMIC);
+    tb a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
+    tb b = make_circle(3, 0, 0.25, CAROM_BODY_DYNAMIC);
     float toi = -1.0f;
     set_motion(&a, 2, 0, 0, 0, 0);
     set_motion(&b, -1, 0, 0, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.25f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&a, &b, 0.25f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, 0.75, 1e-6);
     /* an empty search interval finds nothing */
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 1.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
+    ck_assert_int_eq(toi_of(&a, &b, 1.0f, 1.0f, 1e-4f, &toi), 0);
 }
 END_TEST
 
@@ -512,14 +541,14 @@ START_TEST(test_toi_falling_circle_meets_box_top_face)
 {
     /* top face at y = 0.5; centre at 2, r = 0.25, falling at 1 under g = 10:
      * 1.25 = t + 5 t^2 */
-    cr_body box = make_box(0, 0, 2, 0.5, 0, CAROM_BODY_STATIC);
-    cr_body ball = make_circle(0.3, 2, 0.25, CAROM_BODY_DYNAMIC);
+    tb box = make_box(0, 0, 2, 0.5, 0, CAROM_BODY_STATIC);
+    tb ball = make_circle(0.3, 2, 0.25, CAROM_BODY_DYNAMIC);
     double h = 2.0 - 0.5 - 0.25, e = (-1.0 + sqrt(1.0 + 20.0 * h)) / 10.0;
     float toi = -1.0f;
     set_motion(&ball, 0, -1, 0, 0, -10);
-    ck_assert_int_eq(cr_time_of_impact(&box, &ball, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&box, &ball, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, e, 1e-6);
-    ck_assert_int_eq(cr_time_of_impact(&ball, &box, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&ball, &box, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, e, 1e-6);
 }
 END_TEST
@@ -530,8 +559,8 @@ START_TEST(test_toi_circle_meets_box_corner_at_radius_distance)
      * |(2 - 2t, 0.8 - 0.5t)| = 0.5, i.e. 4.25 t^2 - 8.8 t + 4.39 = 0. It
      * passes the top face's line (t = 0.6, x = 1.8) and the right face's
      * (t = 0.75, y = 1.425) beyond the ends of those edges. */
-    cr_body box = make_box(0, 0, 1, 1, 0, CAROM_BODY_STATIC);
-    cr_body ball = make_circle(3, 1.8, 0.5, CAROM_BODY_DYNAMIC);
+    tb box = make_box(0, 0, 1, 1, 0, CAROM_BODY_STATIC);
+    tb ball = make_circle(3, 1.8, 0.5, CAROM_BODY_DYNAMIC);
     double A = 4.25, B = -8.8, C = 4.39;
     double e = 2.0 * C / (-B + sqrt(B * B - 4.0 * A * C));
     double cx = 3.0 - 2.0 * e, cy = 1.8 - 0.5 * e;
@@ -539,9 +568,9 @@ START_TEST(test_toi_circle_meets_box_corner_at_radius_distance)
     ck_assert(cx > 1.0 && cy > 1.0); /* vertex region */
     ck_assert_close(hypot(cx - 1.0, cy - 1.0), 0.5, 1e-12);
     set_motion(&ball, -2, -0.5, 0, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&box, &ball, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&box, &ball, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, e, 1e-5);
-    ck_assert_int_eq(cr_time_of_impact(&ball, &box, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&ball, &box, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, e, 1e-5);
 }
 END_TEST
@@ -549,14 +578,14 @@ END_TEST
 START_TEST(test_toi_falling_box_meets_box_face_with_a_vertex)
 {
     /* bottom at 2 - 0.5 = 1.5 over a top face at 0.5: 1 = t + 5 t^2 */
-    cr_body ground = make_box(0, 0, 2, 0.5, 0, CAROM_BODY_STATIC);
-    cr_body top = make_box(0.3, 2, 0.5, 0.5, 0, CAROM_BODY_DYNAMIC);
+    tb ground = make_box(0, 0, 2, 0.5, 0, CAROM_BODY_STATIC);
+    tb top = make_box(0.3, 2, 0.5, 0.5, 0, CAROM_BODY_DYNAMIC);
     double e = (-1.0 + sqrt(21.0)) / 10.0;
     float toi = -1.0f;
     set_motion(&top, 0, -1, 0, 0, -10);
-    ck_assert_int_eq(cr_time_of_impact(&ground, &top, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&ground, &top, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, e, 1e-6);
-    ck_assert_int_eq(cr_time_of_impact(&top, &ground, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&top, &ground, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, e, 1e-6);
 }
 END_TEST
@@ -564,8 +593,8 @@ END_TEST
 START_TEST(test_toi_circles_with_different_accelerations_match_scan)
 {
     /* relative acceleration (0, -2): the quartic case */
-    cr_body a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
-    cr_body b = make_circle(3, 0.5, 0.5, CAROM_BODY_DYNAMIC);
+    tb a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
+    tb b = make_circle(3, 0.5, 0.5, CAROM_BODY_DYNAMIC);
     double e = -1.0, lo, hi;
     const int n = 200000;
     int i, k;
@@ -586,10 +615,10 @@ START_TEST(test_toi_circles_with_different_accelerations_match_scan)
             e = lo;
         }
     ck_assert_msg(e > 0.0, "the scan finds no contact");
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&a, &b, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, e, 1e-5);
     ck_assert_msg(toi <= e + 1e-6, "toi %.9g after the contact %.9g", (double)toi, e);
-    ck_assert_int_eq(cr_time_of_impact(&b, &a, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&b, &a, 0.0f, 1.0f, 1e-4f, &toi), 1);
     ck_assert_close(toi, e, 1e-5);
 }
 END_TEST
@@ -598,8 +627,8 @@ START_TEST(test_toi_projectile_onto_static_circle_is_not_missed)
 {
     /* ball thrown from (-3, 0) at (3, 4) under g = 8 lands on the centre of
      * a static ball at the origin at t = 1: d = (-3 + 3t, 4t - 4t^2) */
-    cr_body peg = make_circle(0, 0, 0.5, CAROM_BODY_STATIC);
-    cr_body ball = make_circle(-3, 0, 0.5, CAROM_BODY_DYNAMIC);
+    tb peg = make_circle(0, 0, 0.5, CAROM_BODY_STATIC);
+    tb ball = make_circle(-3, 0, 0.5, CAROM_BODY_DYNAMIC);
     double e = -1.0, lo, hi;
     const int n = 200000;
     int i, k;
@@ -620,7 +649,7 @@ START_TEST(test_toi_projectile_onto_static_circle_is_not_missed)
             e = lo;
         }
     ck_assert_msg(e > 0.0, "the scan finds no contact");
-    ck_assert_msg(cr_time_of_impact(&peg, &ball, 0.0f, 1.0f, 1e-4f, 1.0f /* dt */, &toi) == 1,
+    ck_assert_msg(toi_of(&peg, &ball, 0.0f, 1.0f, 1e-4f, &toi) == 1,
                   "impact at %.9g missed", e);
     ck_assert_close(toi, e, 1e-5);
 }
@@ -630,14 +659,13 @@ START_TEST(test_toi_rotating_box_stops_within_tolerance_before_contact)
 {
     /* box spinning at 3 rad/s sliding at 2 towards a static box:
      * conservative advancement */
-    cr_body ground = make_box(0, 0, 1, 0.5, 0, CAROM_BODY_STATIC);
-    cr_body spin = make_box(3, 0.2, 0.5, 0.5, 0.3, CAROM_BODY_DYNAMIC);
+    tb ground = make_box(0, 0, 1, 0.5, 0, CAROM_BODY_STATIC);
+    tb spin = make_box(3, 0.2, 0.5, 0.5, 0.3, CAROM_BODY_DYNAMIC);
     const float tol = 1e-3f;
     const int n = 100000;
     double e = -1.0, lo, hi;
     int i, k;
     float toi = -1.0f, sep;
-    cr_body pa, pb;
     set_motion(&spin, -2, 0, 3, 0, 0);
     for (i = 1; i <= n && e < 0.0; ++i)
         if (polygons_sat_d(&ground, &spin, (double)i / n) <= 0.0) {
@@ -653,20 +681,16 @@ START_TEST(test_toi_rotating_box_stops_within_tolerance_before_contact)
             e = lo;
         }
     ck_assert_msg(e > 0.0, "the scan finds no contact");
-    ck_assert_int_eq(cr_time_of_impact(&ground, &spin, 0.0f, 1.0f, tol, 1.0f /* dt */, &toi), 1);
+    ck_assert_int_eq(toi_of(&ground, &spin, 0.0f, 1.0f, tol, &toi), 1);
     ck_assert_msg(toi >= 0.0f && (double)toi <= e + 1e-6,
                   "toi %.9g not in [0, contact %.9g]", (double)toi, e);
-    pa = posed(&ground, toi);
-    pb = posed(&spin, toi);
-    sep = cr_separation(&pa, &pb);
+    sep = separation_at(&ground, &spin, toi);
     ck_assert_msg(sep >= 0.0f && sep <= tol + 1e-5f,
                   "separation %.9g at toi %.9g, tolerance %g", (double)sep,
                   (double)toi, (double)tol);
     /* the other order */
-    ck_assert_int_eq(cr_time_of_impact(&spin, &ground, 0.0f, 1.0f, tol, 1.0f /* dt */, &toi), 1);
-    pa = posed(&spin, toi);
-    pb = posed(&ground, toi);
-    sep = cr_separation(&pa, &pb);
+    ck_assert_int_eq(toi_of(&spin, &ground, 0.0f, 1.0f, tol, &toi), 1);
+    sep = separation_at(&spin, &ground, toi);
     ck_assert_msg(sep >= 0.0f && sep <= tol + 1e-5f && (double)toi <= e + 1e-6,
                   "reversed: separation %.9g at toi %.9g", (double)sep, (double)toi);
 }
@@ -674,23 +698,23 @@ END_TEST
 
 START_TEST(test_toi_passing_bodies_miss)
 {
-    cr_body a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
-    cr_body b = make_circle(3, 2, 0.5, CAROM_BODY_DYNAMIC);
-    cr_body box = make_box(0, 0, 1, 1, 0, CAROM_BODY_STATIC);
-    cr_body spin = make_box(3, 3, 0.5, 0.5, 0, CAROM_BODY_DYNAMIC);
+    tb a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
+    tb b = make_circle(3, 2, 0.5, CAROM_BODY_DYNAMIC);
+    tb box = make_box(0, 0, 1, 1, 0, CAROM_BODY_STATIC);
+    tb spin = make_box(3, 3, 0.5, 0.5, 0, CAROM_BODY_DYNAMIC);
     float toi = -1.0f;
     /* passes 2 above, closest distance 2 > 1 */
     set_motion(&b, -4, 0, 0, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 2.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
+    ck_assert_int_eq(toi_of(&a, &b, 0.0f, 2.0f, 1e-4f, &toi), 0);
     /* over the box's top (1) with 0.5 to spare: centre at 2, r = 0.5 */
-    ck_assert_int_eq(cr_time_of_impact(&box, &b, 0.0f, 2.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
+    ck_assert_int_eq(toi_of(&box, &b, 0.0f, 2.0f, 1e-4f, &toi), 0);
     /* the same, accelerating differently (the quartic): 0.25 to spare */
     set_motion(&b, -4, 0.25, 0, 0, -0.5);
     ck_assert(circles_gap_d(&a, &b, 0.5) > 0.5);
-    ck_assert_int_eq(cr_time_of_impact(&a, &b, 0.0f, 2.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
+    ck_assert_int_eq(toi_of(&a, &b, 0.0f, 2.0f, 1e-4f, &toi), 0);
     /* a spinning box moving away */
     set_motion(&spin, 1, 1, 4, 0, 0);
-    ck_assert_int_eq(cr_time_of_impact(&box, &spin, 0.0f, 2.0f, 1e-4f, 1.0f /* dt */, &toi), 0);
+    ck_assert_int_eq(toi_of(&box, &spin, 0.0f, 2.0f, 1e-4f, &toi), 0);
 }
 END_TEST
 
