@@ -37,9 +37,17 @@ SCENE ?= tools/scenes/default.scene
 include tools/box2d.mk
 # The stress suite (tools/stress/stress.mk): make stress, make stress-check.
 include tools/stress/stress.mk
+# `carom render`'s drawing code (tools/render/render.mk), linked into build/carom.
+include tools/render/render.mk
+# make shared, install, uninstall, install-test, check-cxx (mk/install.mk).
+include mk/install.mk
+# The scene suite on emulated Cortex-M (tools/embedded/embedded.mk):
+# check-embedded, check-embedded-negative, embedded-insn, embedded-size.
+include tools/embedded/embedded.mk
 HAVE_BOX2D := $(shell pkg-config --exists box2d 2>/dev/null && echo yes)
 
 .PHONY: validate-check check-cross bench all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
+.PHONY: help-check
 
 all: $(LIB) $(CLI) $(if $(HAVE_BOX2D),$(BOX2D_BIN))
 
@@ -132,6 +140,11 @@ check: deps
 	@$(MAKE) --no-print-directory readme-test
 	@$(MAKE) --no-print-directory validate-check
 	@$(MAKE) --no-print-directory cli-test
+	@$(MAKE) --no-print-directory stress-check
+	@$(MAKE) --no-print-directory check-embedded
+	@$(MAKE) --no-print-directory install-test
+	@$(MAKE) --no-print-directory check-cxx
+	@$(MAKE) --no-print-directory help-check
 
 # ---- the main job -----------------------------------------------------------
 
@@ -148,10 +161,67 @@ bench: $(PROF_LIB) $(LIB)
 clean:
 	rm -rf $(BUILD)
 
+# One line per target; `make help-check` fails if a .PHONY target of the
+# Makefile or its fragments is missing here.
 help:
-	@echo "make            build $(LIB) and $(CLI)"
-	@echo "make check      unit tests (Check), symbol check, CLI tests"
-	@echo "make run        run $(SCENE) and summarise it"
-	@echo "make validate   carom against Box2D: docs/validation.md"
-	@echo "make bench      profiler overhead; make bench-box2d: carom vs Box2D timing"
-	@echo "make clean      remove $(BUILD)/"
+	@echo "carom: make targets (variables: BUILD=$(BUILD) CC=$(CC) PREFIX=$(PREFIX) DESTDIR= SCENE= CAROM_FLAGS=)"
+	@echo ""
+	@echo "build"
+	@echo "  make all             the default (plain make): $(LIB), $(CLI), and $(BOX2D_BIN) if Box2D is installed"
+	@echo "  make lib             $(LIB) only"
+	@echo "  make cli             $(CLI) only (linked with the profiling build, $(PROF_LIB))"
+	@echo "  make shared          $(SHLIB) (soname $(SONAME), -fPIC objects in $(BUILD)/pic/) and its symlinks"
+	@echo "  make box2d           $(BOX2D_BIN) and $(BENCH_STEP) (Box2D 2.4.1 harness; needs libbox2d-dev, g++)"
+	@echo "  make embedded        the Cortex-M libraries, firmware and host suite of check-embedded; runs nothing"
+	@echo "  make embedded-host   the embedded scene suite built for this machine (the reference hashes)"
+	@echo "  make fuzz-build      the libFuzzer harnesses only, in $(BUILD)/fuzz/"
+	@echo ""
+	@echo "test"
+	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, readme-test, validate-check, cli-test, stress-check, check-embedded, install-test, check-cxx, help-check"
+	@echo "  make unit            the Check unit tests, plain and profiling builds"
+	@echo "  make cli-test        $(CLI)'s command-line tests (tests/cli_test.sh)"
+	@echo "  make readme-test     the README's example program compiles and runs"
+	@echo "  make check-symbols   the archives call no allocator and no libm function but sqrtf"
+	@echo "  make check-switches  every switch of include/carom_config.h builds and removes code"
+	@echo "  make check-cross     the core builds for a Cortex-M4F (skipped without arm-none-eabi-gcc)"
+	@echo "  make check-embedded  the scene suite under qemu on Cortex-M4F, M3 and M0 must match the x86-64 hashes"
+	@echo "  make check-embedded-negative  the M4F firmware with fused multiply-add must fail that comparison"
+	@echo "  make validate-check  carom against Box2D within tolerance; report and figure under $(BUILD)/"
+	@echo "  make stress-check    the stress checker's self-test, then the fast stress scenes (a few seconds)"
+	@echo "  make fuzz            build the libFuzzer harnesses, fuzz each FUZZ_SECONDS (30), replay; needs clang"
+	@echo "  make fuzz-regress    replay the fuzz seed corpus and tests/fuzz/crashers/ (seconds)"
+	@echo "  make install-test    install into a temporary DESTDIR, build and run a program with pkg-config, uninstall"
+	@echo "  make check-cxx       include/carom.h compiles as C++98 and C++17 (-Wall -Wextra -Werror -pedantic)"
+	@echo "  make help-check      every .PHONY target is listed by make help"
+	@echo ""
+	@echo "run and report"
+	@echo "  make run             run SCENE (default $(SCENE)): impacts, final state, operation counts"
+	@echo "  make validate        carom against Box2D 2.4.1: regenerates docs/validation.md (~30 s)"
+	@echo "  make bench           the profiler's overhead, then bench-box2d (not part of check)"
+	@echo "  make bench-box2d     carom against Box2D, timed: regenerates docs/benchmarks.md (~2 min)"
+	@echo "  make stress          every stress scene through carom and Box2D: docs/stability.md (~10 min)"
+	@echo "  make stress-scenes   regenerate tools/scenes/stress (python3)"
+	@echo "  make render-images   redraw docs/images/ with carom render (default scene animated; stills; needs gnuplot)"
+	@echo "  make embedded-insn   instructions per run on the emulated M4F against carom profile --weights cortex-m4f"
+	@echo "  make embedded-size   text, data and bss of the library per Cortex-M core"
+	@echo ""
+	@echo "install"
+	@echo "  make install         headers, libcarom.a, libcarom.so.$(VERSION), carom.pc, bin/carom, docs into DESTDIR/PREFIX"
+	@echo "  make uninstall       remove exactly what make install put there"
+	@echo ""
+	@echo "other"
+	@echo "  make deps            install the unit tests' packages with apt-get if missing (when root or sudo)"
+	@echo "  make box2d-deps      the same for Box2D 2.4.1 and g++"
+	@echo "  make clean           remove $(BUILD)/"
+	@echo "  make fuzz-clean      remove $(BUILD)/fuzz/"
+	@echo "  make help            this list"
+
+help-check:
+	@$(MAKE) --no-print-directory -s help > $(BUILD)/.help.txt 2>/dev/null || { mkdir -p $(BUILD) && $(MAKE) --no-print-directory -s help > $(BUILD)/.help.txt; }
+	@missing=; \
+	for t in $$($(MAKE) --no-print-directory -pRrq -f $(firstword $(MAKEFILE_LIST)) : 2>/dev/null | sed -n 's/^\.PHONY: *//p'); do \
+	    grep -q -E "^ *make $$t( |$$)" $(BUILD)/.help.txt || missing="$$missing $$t"; \
+	done; \
+	rm -f $(BUILD)/.help.txt; \
+	if [ -n "$$missing" ]; then echo "make help does not list:$$missing" >&2; exit 1; fi; \
+	echo "make help lists every .PHONY target"

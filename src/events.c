@@ -60,10 +60,6 @@
 
 #endif
 
-static int cr_moving(const cr_body *b)
-{
-    return b->type != CAROM_BODY_STATIC && (b->flags & CR_BODY_AWAKE);
-}
 
 void cr_pairs_link(carom_world *w)
 {
@@ -106,6 +102,11 @@ void cr_sync_all(carom_world *w, float t)
 }
 
 #if CAROM_ENABLE_EVENTS
+
+static int cr_moving(const cr_body *b)
+{
+    return b->type != CAROM_BODY_STATIC && (b->flags & CR_BODY_AWAKE);
+}
 
 static cr_mover cr_mover_of(const carom_world *w, int i)
 {
@@ -442,10 +443,10 @@ static float cr_row_vn(const carom_world *w, const cr_impact_row *r, int k,
 static float cr_row_sweep(carom_world *w, cr_impact_row *r)
 {
     const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
-    cr_v2 t = cr_vright(r->n);
     float change = 0.0f;
     int k;
 #if CAROM_ENABLE_FRICTION
+    cr_v2 t = cr_vright(r->n);
     if (cr_gt(r->friction, 0.0f))
         for (k = 0; k < r->count; ++k) {
             float vt = cr_row_vn(w, r, k, t);

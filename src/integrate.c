@@ -61,10 +61,12 @@ static cr_v2 cr_drift_offset(cr_v2 v, cr_v2 a, float h)
     return cr_vadd(cr_vscale(h, v), cr_vscale(cr_mul(0.5f, cr_mul(h, h)), a));
 }
 
+#if CAROM_ENABLE_ROTATION
 static float cr_drift_angle(float w, float alpha, float h)
 {
     return cr_add(cr_mul(w, h), cr_mul(cr_mul(0.5f, cr_mul(h, h)), alpha));
 }
+#endif
 
 void cr_pose_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *x,
                 cr_rot *q)

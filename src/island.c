@@ -77,6 +77,7 @@ int cr_island_wake_touched(carom_world *w)
     return woke;
 }
 
+#if CAROM_ENABLE_SLEEP
 static int cr_kinematic_moving(const cr_body *b)
 {
     return b->type == CAROM_BODY_KINEMATIC &&
@@ -91,6 +92,8 @@ static int cr_find(int *parent, int i)
     }
     return i;
 }
+
+#endif
 
 void cr_island_sleep(carom_world *w, float dt)
 {

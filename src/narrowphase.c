@@ -356,7 +356,10 @@ float cr_separation(const cr_shape *A, cr_v2 xa, cr_rot qa, const cr_shape *B,
 {
     if (A->kind == CAROM_SHAPE_CIRCLE && B->kind == CAROM_SHAPE_CIRCLE)
         return cr_sub(cr_vlen(cr_vsub(xb, xa)), cr_add(A->radius, B->radius));
-#if CAROM_ENABLE_POLYGONS
+#if !CAROM_ENABLE_POLYGONS
+    (void)qa;
+    (void)qb;
+#else
     {
         cr_manifold m;
         cr_v2 p = cr_inv_rotate(qa, cr_vsub(xb, xa));

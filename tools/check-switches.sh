@@ -15,7 +15,7 @@ size_of() {
 base=$(size_of "")
 printf '%8s  %s\n' "$base" "defaults"
 fail=0
-for sw in POLYGONS ROTATION FRICTION FORCES EVENTS; do
+for sw in POLYGONS ROTATION FRICTION FORCES EVENTS SLEEP KINEMATIC POLYGON_POLYGON DYNAMIC_POLYGONS; do
     n=$(size_of "-DCAROM_ENABLE_$sw=0")
     printf '%8s  CAROM_ENABLE_%s=0\n' "$n" "$sw"
     if [ "$n" -ge "$base" ]; then
@@ -23,10 +23,14 @@ for sw in POLYGONS ROTATION FRICTION FORCES EVENTS; do
         fail=1
     fi
 done
+# compensated sums change results, not capabilities: they must build; the
+# size may go either way with the compiler's inlining
+n=$(size_of "-DCAROM_ENABLE_COMPENSATED=0")
+printf '%8s  CAROM_ENABLE_COMPENSATED=0\n' "$n"
 n=$(size_of "-DCAROM_ENABLE_PROFILE=1")
 printf '%8s  CAROM_ENABLE_PROFILE=1\n' "$n"
 [ "$n" -gt "$base" ] || { echo "check-switches: FAIL: profiling added no code" >&2; fail=1; }
-all_off="-DCAROM_ENABLE_POLYGONS=0 -DCAROM_ENABLE_ROTATION=0 -DCAROM_ENABLE_FRICTION=0 -DCAROM_ENABLE_FORCES=0 -DCAROM_ENABLE_EVENTS=0"
+all_off="-DCAROM_ENABLE_POLYGONS=0 -DCAROM_ENABLE_ROTATION=0 -DCAROM_ENABLE_FRICTION=0 -DCAROM_ENABLE_FORCES=0 -DCAROM_ENABLE_EVENTS=0 -DCAROM_ENABLE_SLEEP=0 -DCAROM_ENABLE_KINEMATIC=0 -DCAROM_ENABLE_COMPENSATED=0"
 n=$(size_of "$all_off")
 printf '%8s  all capabilities off (circles, no rotation, no friction, gravity only)\n' "$n"
 exit $fail
