@@ -126,7 +126,10 @@ typedef struct cr_pair_out {
 static void cr_emit(cr_pair_out *o, const cr_box *boxes, int a, int b)
 {
     cr_pair *p;
-    if (a == b || !cr_boxes_overlap(&boxes[a], &boxes[b]) || !o->accept(o->ctx, a, b))
+    /* past the capacity the count stops at cap + 1: it cannot overflow,
+     * whatever the number of overlapping bodies */
+    if (o->found > (long)o->cap || a == b || !cr_boxes_overlap(&boxes[a], &boxes[b]) ||
+        !o->accept(o->ctx, a, b))
         return;
     if (o->found++ >= (long)o->cap)
         return;

@@ -14,10 +14,13 @@ typedef struct cr_pair {
     int stamp;     /* events: bumped each time toi is recomputed */
     int va, vb;    /* events: drift versions of a and b it was computed with */
     int mark;      /* events: island stamp */
-    int met;       /* events: met in this substep; needs a contact */
+    int met;       /* events: CR_PAIR_* bits */
     int solved;    /* events: its contact was the solver's when searched */
     float toi;     /* events: next impact, local step time (CR_NEVER: none) */
 } cr_pair;
+
+#define CR_PAIR_MET 1 /* met in this substep: needs a contact */
+#define CR_PAIR_HIT 2 /* an impact of this step */
 
 /* A body's box in the grid. */
 typedef struct cr_proxy {
@@ -54,7 +57,7 @@ void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
 typedef int (*cr_pair_accept_fn)(void *ctx, int a, int b);
 
 /* All overlapping pairs the filter accepts, into out[0..cap); returns how
- * many were found (more than cap: the excess was not stored). */
+ * many were stored, or cap + 1 if there were more (the count saturates). */
 long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
                          cr_pair_accept_fn accept, void *ctx, cr_pair *out,
                          int cap);

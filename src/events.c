@@ -254,16 +254,20 @@ static void cr_pair_search(carom_world *w, int k, float t0)
         approach = cr_approach_speed(&A, &B, t0, slop, &scale);
         if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale)))
             p->toi = t0;
-        else
-            p->met = slow = 1;
+        else {
+            p->met |= CR_PAIR_MET;
+            slow = 1;
+        }
     } else if (cr_time_of_impact(&A, &B, t0, dt, tol, &toi)) {
         /* arriving slower than the rest speed is coming to rest, not an
          * impact: the contact solver takes it */
         approach = cr_approach_speed(&A, &B, toi, slop, &scale);
         if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale)))
             p->toi = toi;
-        else
-            p->met = slow = 1;
+        else {
+            p->met |= CR_PAIR_MET;
+            slow = 1;
+        }
     }
     if (cr_le(p->toi, dt)) {
         cr_heap_push(w, k);
@@ -303,19 +307,25 @@ void cr_events_begin(carom_world *w)
         cr_pair_search(w, k, 0.0f);
 }
 
+/* Must pair p be searched again: a body's drift changed, or its contact
+ * changed hands between the solver and the impacts. The first-impact
+ * method (the design note's) finds each pair's first impact once and
+ * ignores later changes of course; but a pair the solver stops taking is
+ * searched, once, or nothing would stop it. */
+static int cr_stale(const carom_world *w, const cr_pair *p)
+{
+    if (w->method == CAROM_METHOD_FIRST_IMPACT)
+        return !(p->met & CR_PAIR_HIT) && p->solved != cr_solved_contact(w, p);
+    return p->va != w->drift[p->a].version || p->vb != w->drift[p->b].version ||
+           p->solved != cr_solved_contact(w, p);
+}
+
 void cr_events_refresh(carom_world *w, float t)
 {
     int k;
-    if (w->method == CAROM_METHOD_FIRST_IMPACT)
-        return; /* the note's method: each pair's first impact, found once */
-    for (k = 0; k < w->pair_count; ++k) {
-        cr_pair *p = &w->pairs[k];
-        /* a body's drift changed, or the contact changed hands between
-         * the solver and the impacts */
-        if (p->va != w->drift[p->a].version || p->vb != w->drift[p->b].version ||
-            p->solved != cr_solved_contact(w, p))
+    for (k = 0; k < w->pair_count; ++k)
+        if (cr_stale(w, &w->pairs[k]))
             cr_pair_search(w, k, t);
-    }
 }
 
 /* ---- growing a body's box after an impact ----------------------------------- */
@@ -447,7 +457,25 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
     int k;
 #if CAROM_ENABLE_FRICTION
     cr_v2 t = cr_vright(r->n);
-    if (cr_gt(r->friction, 0.0f))
+    if (cr_gt(r->friction, 0.0f) && r->count == 2) {
+        /* one row for both points (same line of action), as the contact
+         * solver does: no favoured point */
+        cr_v2 ra = cr_vscale(0.5f, cr_vadd(r->ra[0], r->ra[1]));
+        cr_v2 rb = cr_vscale(0.5f, cr_vadd(r->rb[0], r->rb[1]));
+        float vt = cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, rb),
+                                   cr_point_velocity(A->v, A->w, ra)),
+                           t);
+        float pn = cr_add(r->pn[0], r->pn[1]);
+        float limit = cr_mul(r->friction, pn);
+        float old = cr_add(r->pt[0], r->pt[1]);
+        float mass_t = cr_mul(0.5f, cr_add(r->mass_t[0], r->mass_t[1]));
+        float pt = cr_clamp(cr_sub(old, cr_mul(mass_t, vt)), cr_neg(limit), limit);
+        float d = cr_sub(pt, old);
+        cr_row_apply(w, r, 0, t, cr_vcross(ra, t), cr_vcross(rb, t), d);
+        r->pt[0] = cr_mul(cr_gt(pn, 0.0f) ? cr_div(r->pn[0], pn) : 0.5f, pt);
+        r->pt[1] = cr_sub(pt, r->pt[0]);
+        change = cr_max(change, cr_abs(d));
+    } else if (cr_gt(r->friction, 0.0f))
         for (k = 0; k < r->count; ++k) {
             float vt = cr_row_vn(w, r, k, t);
             float limit = cr_mul(r->friction, r->pn[k]);
@@ -806,7 +834,7 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         for (k = 0; k < r->count; ++k)
             any |= cr_gt(r->pn[k], 0.0f);
         cr_record(w, r, t);
-        w->pairs[r->pair].met = 1;
+        w->pairs[r->pair].met |= CR_PAIR_MET | CR_PAIR_HIT;
     }
     ++w->stats.impact_solves;
 #ifdef CR_DEBUG_PAIR
@@ -870,9 +898,9 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
                     cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b)))
                     c->flags &= ~CR_CONTACT_SOLVE;
             }
-            if (w->method != CAROM_METHOD_FIRST_IMPACT &&
-                (p->va != w->drift[p->a].version || p->vb != w->drift[p->b].version ||
-                 p->solved != cr_solved_contact(w, p)))
+            if (w->method == CAROM_METHOD_FIRST_IMPACT)
+                p->solved = cr_solved_contact(w, p); /* found once: no search */
+            else if (cr_stale(w, p))
                 cr_pair_search(w, k, t);
             k = next;
         }
@@ -949,9 +977,9 @@ carom_status cr_events_add_contacts(carom_world *w, float t)
     int k;
     for (k = 0; k < w->pair_count; ++k) {
         cr_pair *p = &w->pairs[k];
-        if (!p->met)
+        if (!(p->met & CR_PAIR_MET))
             continue;
-        p->met = 0;
+        p->met &= ~CR_PAIR_MET;
         if (p->contact >= 0)
             continue;
         /* both bodies at this instant, displacements up to date */

@@ -302,6 +302,38 @@ static float cr_velocity_vn(carom_world *w, const cr_contact *c, int k)
     return cr_point_vn(A->v, A->w, B->v, B->w, c, &c->pts[k]);
 }
 
+#if CAROM_ENABLE_FRICTION
+/*
+ * Friction of a 2-point manifold as one row. Both points lie on the
+ * reference face, along the tangent, so their tangent rows are the same
+ * constraint (the same line of action): solving them one after the other
+ * would favour the first point and turn a symmetric landing into a
+ * lopsided one. One row at the mean lever arm, limited by mu times the
+ * total normal impulse, shared between the points in proportion to their
+ * normal impulses (for the warm start).
+ */
+static void cr_solve_friction_pair(carom_world *w, cr_contact *c)
+{
+    cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+    cr_contact_point *p0 = &c->pts[0], *p1 = &c->pts[1];
+    cr_v2 t = cr_vright(c->n);
+    cr_v2 ra = cr_vscale(0.5f, cr_vadd(p0->ra, p1->ra));
+    cr_v2 rb = cr_vscale(0.5f, cr_vadd(p0->rb, p1->rb));
+    float mass_t = cr_mul(0.5f, cr_add(p0->mass_t, p1->mass_t));
+    float vt = cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, rb),
+                               cr_point_velocity(A->v, A->w, ra)),
+                       t);
+    float pn = cr_add(p0->pn, p1->pn);
+    float limit = cr_mul(c->friction, pn);
+    float old = cr_add(p0->pt, p1->pt);
+    float pt = cr_clamp(cr_sub(old, cr_mul(mass_t, vt)), cr_neg(limit), limit);
+    float share = cr_gt(pn, 0.0f) ? cr_div(p0->pn, pn) : 0.5f;
+    cr_apply(A, B, cr_vcross(ra, t), cr_vcross(rb, t), t, cr_sub(pt, old));
+    p0->pt = cr_mul(share, pt);
+    p1->pt = cr_sub(pt, p0->pt);
+}
+#endif
+
 static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s,
                               int first)
 {
@@ -337,7 +369,9 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
         c->pts[k].max_pn = cr_max(c->pts[k].max_pn, acc[k]);
     }
 #if CAROM_ENABLE_FRICTION
-    if (cr_gt(c->friction, 0.0f)) {
+    if (cr_gt(c->friction, 0.0f) && c->count == 2) {
+        cr_solve_friction_pair(w, c);
+    } else if (cr_gt(c->friction, 0.0f)) {
         cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
         cr_v2 t = cr_vright(c->n);
         for (k = 0; k < c->count; ++k) {
@@ -488,39 +522,75 @@ void cr_solver_update_deltas(carom_world *w)
     }
 }
 
+/* Is point p of contact c an impact for the restitution pass: met faster
+ * than the rest speed, and pushed? */
+static int cr_bounces(const carom_world *w, const cr_contact *c,
+                      const cr_contact_point *p)
+{
+    return cr_lt(p->rel_vn, cr_neg(cr_rest_speed(w, c->a, c->b))) &&
+           !cr_eq(p->max_pn, 0.0f);
+}
+
+/* Sweeps of the restitution pass before it gives up converging (a row of
+ * touching balls struck at one end needs about one per ball). */
+#define CR_RESTITUTION_SWEEPS 64
+
+/* Relative change of the bounce impulses below which the pass stops. */
+#define CR_RESTITUTION_TOL 1e-6f
+
 int cr_solver_restitution(carom_world *w)
 {
-    int i, k, bounced = 0;
-    for (i = 0; i < w->contact_count; ++i) {
-        cr_contact *c = &w->contacts[i];
-        cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
-        float threshold = cr_rest_speed(w, c->a, c->b);
-        float approach = 0.0f, impulse = 0.0f;
-        int hit = 0;
-        for (k = 0; k < c->count; ++k) {
-            cr_contact_point *p = &c->pts[k];
-            float vn, d, pn;
-            /* the bounce impulses are not kept for the warm start: that is
-             * last step's support of a resting contact, not its bounce */
-            /* met faster than the rest speed, and pushed: an impact. The
-             * bounce is not kept for the warm start, which is last step's
-             * support of a resting contact */
-            if (!cr_lt(p->rel_vn, cr_neg(threshold)) || cr_eq(p->max_pn, 0.0f))
+    int i, k, it, bounced = 0;
+    /* the bounce impulse of each point, in the position correction's
+     * scratch (pp, done by now); it is not kept for the warm start, which
+     * is last step's support of a resting contact, not its bounce */
+    for (i = 0; i < w->contact_count; ++i)
+        for (k = 0; k < w->contacts[i].count; ++k)
+            w->contacts[i].pts[k].pp = 0.0f;
+    /* Newton targets, iterated to convergence: simultaneous bounces come
+     * out of the same answer whatever the order of the contacts (a cue
+     * ball striking two touching balls symmetrically) */
+    for (it = 0; it < CR_RESTITUTION_SWEEPS; ++it) {
+        float change = 0.0f, biggest = 0.0f;
+        for (i = 0; i < w->contact_count; ++i) {
+            cr_contact *c = &w->contacts[i];
+            cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+            if (!cr_gt(c->restitution, 0.0f))
                 continue;
-            hit = 1;
-            approach = cr_max(approach, cr_neg(p->rel_vn));
-            if (cr_gt(c->restitution, 0.0f)) {
+            for (k = 0; k < c->count; ++k) {
+                cr_contact_point *p = &c->pts[k];
+                float vn, d, pb;
+                if (!cr_bounces(w, c, p))
+                    continue;
                 vn = cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
                                      cr_point_velocity(A->v, A->w, p->ra)),
                              c->n);
                 d = cr_neg(cr_mul(p->mass_n, cr_add(vn, cr_mul(c->restitution, p->rel_vn))));
-                pn = cr_max(cr_add(p->pn, d), 0.0f);
-                d = cr_sub(pn, p->pn);
+                /* the total normal impulse stays >= 0 */
+                pb = cr_max(cr_add(p->pp, d), cr_neg(p->pn));
+                d = cr_sub(pb, p->pp);
+                p->pp = pb;
                 cr_apply(A, B, cr_normal_lever(w, c->a, p->ra, c->n),
                          cr_normal_lever(w, c->b, p->rb, c->n), c->n, d);
-                ++bounced;
+                change = cr_max(change, cr_abs(d));
+                biggest = cr_max(biggest, cr_abs(pb));
             }
-            impulse = cr_add(impulse, p->max_pn);
+        }
+        if (!cr_gt(change, cr_mul(CR_RESTITUTION_TOL, biggest)))
+            break;
+    }
+    for (i = 0; i < w->contact_count; ++i) {
+        const cr_contact *c = &w->contacts[i];
+        float approach = 0.0f, impulse = 0.0f;
+        int hit = 0;
+        for (k = 0; k < c->count; ++k) {
+            const cr_contact_point *p = &c->pts[k];
+            if (!cr_bounces(w, c, p))
+                continue;
+            hit = 1;
+            bounced += cr_gt(c->restitution, 0.0f);
+            approach = cr_max(approach, cr_neg(p->rel_vn));
+            impulse = cr_add(impulse, cr_add(p->max_pn, p->pp));
         }
         if (hit)
             cr_record_impact(w, c->a, c->b, w->def.dt, c->n, impulse, approach);

@@ -115,5 +115,6 @@ Suite *suite_scene(void);
 Suite *suite_events(void);
 Suite *suite_toi(void);
 Suite *suite_profile(void);
+Suite *suite_robust(void);
 
 #endif
