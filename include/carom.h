@@ -26,7 +26,8 @@
  *    the step and takes impacts in time order; "discrete" resolves contacts
  *    with the contact solver only; "first-impact" is the design note's
  *    method (docs/events.md). Resting contact is the same in all three: a
- *    soft contact solver with substeps (docs/physics.md).
+ *    substepping contact solver (speculative contacts, block solver, split
+ *    position correction, shock propagation; docs/physics.md).
  *  - Scale: no tolerance is in absolute metres. They derive from a length
  *    unit (the bodies' mean equivalent radius unless the world sets one)
  *    and from |gravity| dt, so a scene scaled by 100 behaves the same.
@@ -133,14 +134,15 @@ typedef struct carom_body_state {
 } carom_body_state;
 
 /**
- * User force callback, evaluated once per awake dynamic body per step at
- * the step's new positions (velocity Verlet needs a(x1)). `state` holds the
- * new position and rotation and the velocity at the start of the step (the
- * new velocity depends on the force, so it is not known yet). Write the
- * force (N, applied at the centre of mass) and torque (N m); both start at
- * zero. A non-finite or out-of-range result fails the step
- * (CAROM_ERR_NOT_FINITE / CAROM_ERR_OUT_OF_RANGE) and the world keeps its
- * state from before the step.
+ * User force callback: the force (N, at the centre of mass) and torque
+ * (N m) on body `body` in the state `state`; both start at zero. It is
+ * called when a body is added or its force set (for the step's first
+ * acceleration) and once per awake dynamic body per step at the step's new
+ * positions (velocity Verlet needs a(x1)); there `state` holds the new
+ * position and rotation and the velocity v0 + a0 dt, since the new velocity
+ * depends on the force. A non-finite or out-of-range result fails the step
+ * (CAROM_ERR_NOT_FINITE / CAROM_ERR_OUT_OF_RANGE), or the call that asked
+ * for it, and the world keeps its state from before.
  */
 typedef void (*carom_force_fn)(void *user, int body,
                                const carom_body_state *state,
@@ -160,6 +162,29 @@ typedef struct carom_event {
     float approach_speed; /**< normal approach speed before it, m/s (>= 0) */
 } carom_event;
 
+/**
+ * Two bodies began or ended touching (within the contact slop, or an
+ * impact during the step), or a body began or ended overlapping a sensor.
+ * Reported after the step in which it happened; a body's touches end
+ * without an event when it is removed.
+ */
+typedef struct carom_touch_event {
+    int body_a, body_b;   /**< ids; body_a has the smaller slot index */
+    int begin;            /**< 1: began touching; 0: ended */
+    int sensor;           /**< 1: one of the two is a sensor (overlap) */
+} carom_touch_event;
+
+/** A ray's hit (carom_world_raycast). */
+typedef struct carom_ray_hit {
+    int body;             /**< id of the body hit */
+    carom_vec2 point;     /**< where the ray enters its shape, m */
+    carom_vec2 normal;    /**< unit outward normal of the shape there */
+    float fraction;       /**< along the ray, from 0 (from) to 1 (to) */
+} carom_ray_hit;
+
+/** Query callback: one body found; return 0 to stop the query. */
+typedef int (*carom_query_fn)(void *ctx, int body);
+
 typedef struct carom_world_def {
     carom_vec2 gravity;       /**< m/s^2, default (0, -10) */
     float dt;                 /**< fixed step, s, in [CAROM_LIMIT_MIN_DT,
@@ -178,10 +203,15 @@ typedef struct carom_world_def {
                                    carom_world_events(); 0 = default (more
                                    are counted in carom_world_events_dropped,
                                    not an error) */
-    int max_impacts;          /**< impacts taken one at a time per step
-                                   (events methods) before the rest of the
-                                   step's contacts are solved together; 0 =
-                                   default (CAROM_DEFAULT_IMPACTS_PER_BODY) */
+    int max_impacts;          /**< impacts taken at their instants, with
+                                   restitution, per step (events methods);
+                                   past it the step's further impacts are
+                                   plastic at their instants and its later
+                                   substeps are solved like the discrete
+                                   method (counted in stats.budget_steps);
+                                   0 = default (CAROM_DEFAULT_IMPACTS_PER_
+                                   BODY x max_bodies, at least
+                                   CAROM_MIN_IMPACTS) */
     float length_unit;        /**< m; CAROM_AUTO (default): the mean
                                    equivalent radius sqrt(area / pi) of the
                                    dynamic bodies. Scales every distance
@@ -198,13 +228,19 @@ typedef struct carom_world_def {
     int iterations;           /**< contact sweeps per substep, 1..64;
                                    default 1 */
     int relax_iterations;     /**< relaxing sweeps per substep, 0..64;
-                                   default 1 */
+                                   default CAROM_DEFAULT_RELAX_ITERATIONS
+                                   (2) */
     int enable_sleep;         /**< 1 (default): quiet islands sleep
                                    (CAROM_ENABLE_SLEEP); 0: never */
     float sleep_time;         /**< s an island must stay still to sleep;
                                    default CAROM_DEFAULT_SLEEP_TIME */
     carom_force_fn force_fn;  /**< optional; needs CAROM_ENABLE_FORCES */
     void *force_user;         /**< passed to force_fn */
+    int max_touch_events;     /**< begin/end-touch events recorded per step
+                                   (CAROM_ENABLE_TOUCH_EVENTS); 0 = default
+                                   (CAROM_DEFAULT_TOUCH_EVENTS_PER_BODY x
+                                   max_bodies, at least CAROM_MIN_EVENTS);
+                                   more are counted as dropped */
 } carom_world_def;
 
 typedef struct carom_body_def {
@@ -228,6 +264,20 @@ typedef struct carom_body_def {
                                    sqrt(friction_a friction_b) */
     carom_vec2 force;         /**< constant force at the centre, N */
     float torque;             /**< constant torque, N m */
+    uint32_t category_bits;   /**< collision filter: the categories this body
+                                   is in; default 1 (CAROM_ENABLE_FILTERING) */
+    uint32_t mask_bits;       /**< the categories it collides with; default
+                                   all. Two bodies collide when each one's
+                                   category_bits meet the other's mask_bits */
+    int group_index;          /**< 0 (default): no group. Two bodies of the
+                                   same nonzero group always collide if it
+                                   is positive, never if it is negative,
+                                   whatever their bits (as in Box2D) */
+    int is_sensor;            /**< 1: the body exerts and feels no contact
+                                   impulse; its overlaps with other
+                                   (non-sensor) bodies are reported as touch
+                                   events (CAROM_ENABLE_SENSORS) */
+    void *user_data;          /**< the program's pointer, kept for it */
 } carom_body_def;
 
 typedef struct carom_world carom_world; /* opaque; lives in caller memory */
@@ -352,6 +402,76 @@ carom_status carom_body_set_force(carom_world *w, int id, carom_vec2 force,
 /** 1 if the body is awake (simulated), 0 if asleep (CAROM_ENABLE_SLEEP). */
 int carom_body_is_awake(const carom_world *w, int id);
 
+/**
+ * Remove a body. Its slot is reused by a later carom_world_add_body, with
+ * a new id: the old id is refused from then on with CAROM_ERR_STALE_ID (the
+ * id carries the slot's generation; after 2^(31 - CAROM_ID_INDEX_BITS)
+ * removals of one slot the generation wraps). Its contacts, warm starts
+ * and touches go with it; a sleeping island it belonged to wakes.
+ */
+carom_status carom_world_remove_body(carom_world *w, int id);
+
+/** 1 if `id` names a body of the world now, else 0. */
+int carom_body_is_valid(const carom_world *w, int id);
+
+/** Body type (CAROM_BODY_DYNAMIC, STATIC or KINEMATIC). */
+carom_status carom_body_get_type(const carom_world *w, int id,
+                                 carom_body_type *out);
+
+/** Velocity of the centre of mass (m/s) and angular velocity (rad/s);
+ * either pointer may be NULL. */
+carom_status carom_body_get_velocity(const carom_world *w, int id,
+                                     carom_vec2 *velocity, float *angular);
+
+/** Set the velocity of the centre of mass (m/s) of a dynamic or kinematic
+ * body (CAROM_ERR_BAD_BODY_TYPE for a static one). Wakes it. */
+carom_status carom_body_set_velocity(carom_world *w, int id,
+                                     carom_vec2 velocity);
+
+/** Set the angular velocity (rad/s) of a dynamic or kinematic body. */
+carom_status carom_body_set_angular_velocity(carom_world *w, int id,
+                                             float angular);
+
+/**
+ * Teleport: place the body origin at `position` with `rotation`
+ * (normalised; velocities kept). Any body type. Its warm starts are
+ * dropped (its contacts are found anew next step) and it wakes, with its
+ * island and whatever it now touches.
+ */
+carom_status carom_body_set_transform(carom_world *w, int id,
+                                      carom_vec2 position, carom_rot rotation);
+
+/** Apply an impulse (N s) at a world point (m) to a dynamic body: its
+ * velocity and angular velocity change at once. Wakes it. */
+carom_status carom_body_apply_impulse(carom_world *w, int id,
+                                      carom_vec2 impulse, carom_vec2 point);
+
+/** Apply an angular impulse (N m s) to a dynamic body. */
+carom_status carom_body_apply_angular_impulse(carom_world *w, int id,
+                                              float impulse);
+
+/** Apply a force (N) at a world point (m) during the next step only,
+ * besides the constant force (CAROM_ENABLE_FORCES). Calls add up. */
+carom_status carom_body_apply_force(carom_world *w, int id, carom_vec2 force,
+                                    carom_vec2 point);
+
+/** Apply a torque (N m) during the next step only. Calls add up. */
+carom_status carom_body_apply_torque(carom_world *w, int id, float torque);
+
+/** Restitution in [0, 1] and friction >= 0 after creation (the same rules
+ * as in the definition). */
+carom_status carom_body_set_restitution(carom_world *w, int id, float e);
+carom_status carom_body_set_friction(carom_world *w, int id, float mu);
+
+/** The program's pointer for the body (NULL for a bad id). */
+carom_status carom_body_set_user_data(carom_world *w, int id, void *data);
+void *carom_body_get_user_data(const carom_world *w, int id);
+
+/** Collision filter after creation (carom_body_def's category_bits,
+ * mask_bits, group_index; CAROM_ENABLE_FILTERING). Wakes the body. */
+carom_status carom_body_set_filter(carom_world *w, int id, uint32_t category,
+                                   uint32_t mask, int group);
+
 /* ======================================================================
  * Stepping
  * ====================================================================== */
@@ -385,6 +505,42 @@ const carom_event *carom_world_events(const carom_world *w, int *count);
 
 /** Impacts of the last step that did not fit in max_events. */
 int carom_world_events_dropped(const carom_world *w);
+
+/** Touches that began or ended in the last step (CAROM_ENABLE_TOUCH_EVENTS;
+ * otherwise none); *count gets how many. */
+const carom_touch_event *carom_world_touch_events(const carom_world *w,
+                                                  int *count);
+
+/** Touch events of the last step that did not fit in max_touch_events. */
+int carom_world_touch_events_dropped(const carom_world *w);
+
+/* ======================================================================
+ * Queries (CAROM_ENABLE_QUERIES): exact against the shapes, through the
+ * broadphase grid of the last step (or every body, if bodies were added,
+ * removed or moved by the program since). Sensors are found too.
+ * ====================================================================== */
+
+/** Every body whose shape overlaps the box [lo, hi] (m), to fn. */
+carom_status carom_world_query_box(const carom_world *w, carom_vec2 lo,
+                                   carom_vec2 hi, carom_query_fn fn,
+                                   void *ctx);
+
+/** Every body whose shape contains the point p (m), to fn. */
+carom_status carom_world_query_point(const carom_world *w, carom_vec2 p,
+                                     carom_query_fn fn, void *ctx);
+
+/** The first shape the segment from `from` to `to` enters (a ray starting
+ * inside a shape does not hit it). *found: 1 if hit, else 0. */
+carom_status carom_world_raycast(const carom_world *w, carom_vec2 from,
+                                 carom_vec2 to, carom_ray_hit *hit,
+                                 int *found);
+
+/** Every shape the segment enters, nearest first, into hits[0..cap);
+ * *count gets how many there are (more than cap: the rest were not
+ * stored). */
+carom_status carom_world_raycast_all(const carom_world *w, carom_vec2 from,
+                                     carom_vec2 to, carom_ray_hit *hits,
+                                     int cap, int *count);
 
 /** The body whose state failed the last step's end check
  * (CAROM_ERR_NOT_FINITE or CAROM_ERR_OUT_OF_RANGE), or -1. */

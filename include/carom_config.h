@@ -196,6 +196,13 @@
 #define CAROM_MIN_EVENTS 64
 #endif
 
+#ifndef CAROM_DEFAULT_TOUCH_EVENTS_PER_BODY
+#define CAROM_DEFAULT_TOUCH_EVENTS_PER_BODY 1 /**< begin/end-touch events
+                                                   recorded per step is this
+                                                   times max_bodies, at least
+                                                   CAROM_MIN_EVENTS */
+#endif
+
 #ifndef CAROM_DEFAULT_IMPACTS_PER_BODY
 #define CAROM_DEFAULT_IMPACTS_PER_BODY 64 /**< impacts the events methods take
                                                one at a time per step: this
@@ -222,8 +229,9 @@
 #ifndef CAROM_DEFAULT_RELAX_ITERATIONS
 #define CAROM_DEFAULT_RELAX_ITERATIONS 2 /**< velocity sweeps per substep
                                               after the bodies moved (a
-                                              dense pile needs two to keep
-                                              overlaps under a slop) */
+                                              500-body pour: worst overlap
+                                              3.3 mm with two, 139 mm with
+                                              none) */
 #endif
 
 #ifndef CAROM_DEFAULT_SLEEP_TIME
@@ -261,8 +269,9 @@
 
 #ifndef CAROM_PUSH_SPEED_PER_LENGTH
 #define CAROM_PUSH_SPEED_PER_LENGTH 6.0f /**< 1/s: fastest speed an overlap is
-                                              pushed apart (3 m/s for unit
-                                              boxes, as Box2D v3) */
+                                              pushed apart (3.4 m/s for unit
+                                              boxes, whose equivalent radius
+                                              is 0.56 m; Box2D v3 uses 3) */
 #endif
 
 #ifndef CAROM_REST_SPEED_PER_ACCEL_DT

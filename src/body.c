@@ -156,7 +156,19 @@ carom_body_def carom_default_body_def(void)
     d.friction = 0.6f;
     d.force = cr_v(0.0f, 0.0f);
     d.torque = 0.0f;
+    d.category_bits = 1u;
+    d.mask_bits = 0xffffffffu;
+    d.group_index = 0;
+    d.is_sensor = 0;
+    d.user_data = 0;
     return d;
+}
+
+int cr_filter_pass(const cr_body_info *a, const cr_body_info *b)
+{
+    if (a->group != 0 && a->group == b->group)
+        return a->group > 0;
+    return (a->category & b->mask) != 0u && (b->category & a->mask) != 0u;
 }
 
 carom_status carom_body_def_set_box(carom_body_def *def, float hx, float hy)
@@ -321,6 +333,14 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
     if (!cr_eq(def->angular_velocity, 0.0f))
         return CAROM_ERR_DISABLED;
 #endif
+#if !CAROM_ENABLE_SENSORS
+    if (def->is_sensor)
+        return CAROM_ERR_DISABLED;
+#endif
+#if !CAROM_ENABLE_FILTERING
+    if (def->category_bits != 1u || def->mask_bits != 0xffffffffu || def->group_index != 0)
+        return CAROM_ERR_DISABLED;
+#endif
 
     st = cr_shape_build(def, &in.shape, &area, &unit_inertia);
     if (st != CAROM_OK)
@@ -349,12 +369,22 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
     b.still_time = 0.0f;
     b.type = (unsigned short)def->type;
     b.flags = CR_BODY_ALIVE | CR_BODY_AWAKE;
+    if (def->is_sensor)
+        b.flags |= CR_BODY_SENSOR;
+    if (def->category_bits != 1u || def->mask_bits != 0xffffffffu || def->group_index != 0)
+        b.flags |= CR_BODY_FILTERED;
+    in.category = def->category_bits;
+    in.mask = def->mask_bits;
+    in.group = def->group_index;
+    in.user_data = def->user_data;
+    in.force_once = cr_v(0.0f, 0.0f);
+    in.torque_once = 0.0f;
     in.restitution = def->restitution;
     in.friction = def->friction;
     in.force = def->force;
     in.torque = def->torque;
     in.generation = 0u;
-    in.sleep_island = -1;
+    b.sleep_island = -1;
     in.m = 0.0f;
     in.I = 0.0f;
 

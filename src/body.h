@@ -9,8 +9,14 @@
 #include "arith.h"
 
 /* Flags of cr_body.flags */
-#define CR_BODY_ALIVE 1u  /* the slot holds a body */
-#define CR_BODY_AWAKE 2u  /* simulated this step (not asleep) */
+#define CR_BODY_ALIVE 1u    /* the slot holds a body */
+#define CR_BODY_AWAKE 2u    /* simulated this step (not asleep) */
+#define CR_BODY_SENSOR 4u   /* reports overlaps, no contact impulses */
+#define CR_BODY_FILTERED 8u /* has a collision filter other than the
+                               default (category 1, every mask bit, no
+                               group): pairs read its info */
+#define CR_BODY_ONCE 16u    /* has a force or torque for the next step
+                               only (carom_body_apply_force/torque) */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little
@@ -29,6 +35,9 @@ typedef struct cr_body {
 #endif
     float inv_m, inv_I; /* 0 for static and kinematic bodies */
     float still_time;   /* s the body has been below the sleep speed */
+    int sleep_island;   /* asleep: the island it fell asleep with (here, not
+                           in the cold info, so a failed step's undo puts it
+                           back with the rest) */
     unsigned short type;  /* carom_body_type */
     unsigned short flags; /* CR_BODY_* */
 } cr_body;
@@ -54,9 +63,16 @@ typedef struct cr_body_info {
     float restitution, friction;
     cr_v2 force;               /* constant force at the centre */
     float torque;              /* constant torque */
+    cr_v2 force_once;          /* force for the next step only */
+    float torque_once;         /* torque for the next step only */
+    uint32_t category, mask;   /* collision filter */
+    int group;
+    void *user_data;
     unsigned generation;       /* of the id that names this slot */
-    int sleep_island;          /* asleep: the island it fell asleep with */
 } cr_body_info;
+
+/* Do bodies with infos a and b (either CR_BODY_FILTERED) collide? */
+int cr_filter_pass(const cr_body_info *a, const cr_body_info *b);
 
 /* Validate `def` completely and build the body; *hot and *info are
  * written only on success. */

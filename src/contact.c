@@ -153,6 +153,8 @@ carom_status cr_contacts_build(carom_world *w, float dt)
         cr_manifold m;
         cr_contact *c;
         pr->contact = -1;
+        if ((A->flags | B->flags) & CR_BODY_SENSOR)
+            continue; /* overlaps only (touch.c) */
         if (!cr_collide(&w->info[pr->a].shape, A->x, A->q, &w->info[pr->b].shape,
                         B->x, B->q, cr_pair_reach(w, pr->a, pr->b, dt),
                         w->scale.face_tol, &m))
@@ -215,6 +217,8 @@ int cr_contact_add(carom_world *w, int pair)
     float reach = cr_pair_reach(w, pr->a, pr->b, w->def.dt);
     if (pr->contact >= 0)
         return pr->contact;
+    if ((A->flags | B->flags) & CR_BODY_SENSOR)
+        return -1;
     if (!cr_collide(&w->info[pr->a].shape, A->x, A->q, &w->info[pr->b].shape,
                     B->x, B->q, reach, w->scale.face_tol, &m))
         return -1;

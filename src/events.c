@@ -228,7 +228,8 @@ static void cr_pair_search(carom_world *w, int k, float t0)
     p->vb = w->drift[p->b].version;
     p->solved = cr_solved_contact(w, p);
     if (p->solved ||
-        (!cr_moving(&w->bodies[p->a]) && !cr_moving(&w->bodies[p->b])))
+        (!cr_moving(&w->bodies[p->a]) && !cr_moving(&w->bodies[p->b])) ||
+        ((w->bodies[p->a].flags | w->bodies[p->b].flags) & CR_BODY_SENSOR))
         return;
     A = cr_mover_of(w, p->a);
     B = cr_mover_of(w, p->b);
@@ -356,9 +357,7 @@ static int cr_regrow_visit(void *ctx, int other)
     int a = c->body < other ? c->body : other;
     int b = c->body < other ? other : c->body;
     cr_pair *p;
-    if (other == c->body || cr_has_pair(w, a, b))
-        return 1;
-    if (w->bodies[a].type == CAROM_BODY_STATIC && w->bodies[b].type == CAROM_BODY_STATIC)
+    if (other == c->body || cr_has_pair(w, a, b) || !cr_may_collide(w, a, b))
         return 1;
     if (w->pair_count >= w->def.max_pairs) {
         c->st = CAROM_ERR_PAIR_CAPACITY;

@@ -115,6 +115,10 @@ carom_status cr_body_accel(const carom_world_def *def, int id,
     {
         cr_v2 f = info->force;
         float tq = info->torque;
+        if (b->flags & CR_BODY_ONCE) {
+            f = cr_vadd(f, info->force_once);
+            tq = cr_add(tq, info->torque_once);
+        }
         if (def->force_fn) {
             carom_body_state st;
             cr_v2 uf = cr_v(0.0f, 0.0f);

@@ -29,22 +29,22 @@ void cr_island_awake_list(carom_world *w)
 
 void cr_island_wake(carom_world *w, int slot)
 {
-    int island = w->info[slot].sleep_island, j;
+    int island = w->bodies[slot].sleep_island, j;
     cr_body *b = &w->bodies[slot];
     b->still_time = 0.0f;
     if (b->flags & CR_BODY_AWAKE)
         return;
     b->flags |= CR_BODY_AWAKE;
-    w->info[slot].sleep_island = -1;
+    w->bodies[slot].sleep_island = -1;
     if (island < 0)
         return;
     for (j = 0; j < w->slot_count; ++j) {
         cr_body *o = &w->bodies[j];
         if ((o->flags & CR_BODY_ALIVE) && !(o->flags & CR_BODY_AWAKE) &&
-            w->info[j].sleep_island == island) {
+            w->bodies[j].sleep_island == island) {
             o->flags |= CR_BODY_AWAKE;
             o->still_time = 0.0f;
-            w->info[j].sleep_island = -1;
+            w->bodies[j].sleep_island = -1;
         }
     }
 }
@@ -166,7 +166,7 @@ void cr_island_sleep(carom_world *w, float dt)
 #if CAROM_ENABLE_COMPENSATED
         b->vc = cr_v(0.0f, 0.0f);
 #endif
-        w->info[id].sleep_island = root;
+        w->bodies[id].sleep_island = root;
     }
 #else
     (void)w;

@@ -19,9 +19,12 @@
  *      pseudo-velocities that are then dropped: no momentum is added, so
  *      overlap recovery never turns into bounce;
  *   5. relax sweeps: velocity sweeps again, after the move.
- * After the last substep the discrete method applies restitution once, to
- * points hit faster than the rest speed (Box2D v3's pass); the events
- * methods have taken their impacts at their instants already.
+ * After the last substep a restitution pass (Box2D v3's, iterated to
+ * convergence here) bounces the points the solver stopped that were hit
+ * faster than the rest speed: every impact of the discrete method; in the
+ * events methods, which take their impacts at their instants, only what the
+ * solver stopped (a toppling rod's far end, the substeps past the impact
+ * budget).
  *
  * This is Box2D v3's "soft step" with its push-out replaced by Box2D 2.4's
  * split position correction. The soft constraint of v3 is a stiff spring:

@@ -63,7 +63,7 @@ void cr_solver_set_drifts(carom_world *w, const cr_substep *s);
  * after they moved. */
 void cr_solver_update_deltas(carom_world *w);
 
-/* Discrete method, end of step: Newton restitution for the contacts that
+/* End of step, every method: Newton restitution for the contacts that
  * were hit faster than the rest speed. Returns how many points bounced. */
 int cr_solver_restitution(carom_world *w);
 

@@ -8,7 +8,7 @@
  *   contact.c      contacts: manifolds (narrowphase.c) of the pairs within
  *                  reach, impulses carried over from the last step
  *   solver.c       the contact solver's substeps: soft push-out, relax,
- *                  restitution (discrete method)
+ *                  restitution at the end of the step
  *   events.c       between the solver's passes: bodies drift, impacts at
  *                  their instants in time order (toi.c), simultaneous ones
  *                  solved together
@@ -60,6 +60,13 @@ typedef struct cr_impact_row {
     float pn[CAROM_MAX_MANIFOLD_POINTS], pt[CAROM_MAX_MANIFOLD_POINTS];
     int impact;      /* approaching faster than the rest speed */
 } cr_impact_row;
+
+/* A touching pair (touch.c): slots a < b; CR_TOUCH_SENSOR in b if one of
+ * them is a sensor. */
+typedef struct cr_touch {
+    int a, b;
+} cr_touch;
+#define CR_TOUCH_SENSOR (1 << 30)
 
 /* The scale the tolerances follow (carom_config.h). */
 typedef struct cr_scale {
@@ -128,11 +135,26 @@ struct carom_world {
     carom_stats stats;
     int error_body;
 
+    /* touches (touch.c): the pairs touching after the last step, sorted,
+     * and the events of the last step */
+    cr_touch *touch, *touch_next;
+    int touch_count, touch_cap;
+    carom_touch_event *touch_events;
+    int touch_event_count, touch_events_dropped, max_touch_events;
+
+    /* queries: the broadphase grid still holds every body (no body was
+     * added, removed or moved by the program since it was built) */
+    int grid_valid;
+
     carom_profile *profile;   /* attached counters, or NULL */
 };
 
 /* A body's id: its slot and the slot's generation. */
 int cr_body_id(const carom_world *w, int slot);
+
+/* May bodies a and b collide: one of them moves, they are not two sensors,
+ * and their filter lets them. */
+int cr_may_collide(const carom_world *w, int a, int b);
 
 /* Count an impact of bodies a and b at local step time t, and record it
  * in the event list if there is room (else count it as dropped). */

@@ -19,6 +19,7 @@ int main(void)
     srunner_add_suite(sr, suite_profile());
     srunner_add_suite(sr, suite_scene());
     srunner_add_suite(sr, suite_robust());
+    srunner_add_suite(sr, suite_api());
     srunner_run_all(sr, CK_NORMAL);
     failed = srunner_ntests_failed(sr);
     srunner_free(sr);

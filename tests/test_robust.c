@@ -515,6 +515,44 @@ START_TEST(test_capacity_failure_changes_nothing)
 }
 END_TEST
 
+/* A step that woke a sleeping stack and then failed puts the stack back to
+ * sleep as one island: waking one of its boxes afterwards wakes both. */
+START_TEST(test_failed_step_restores_sleeping_islands)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def(), g = carom_default_body_def();
+    carom_status st = CAROM_OK;
+    tw t;
+    int box[2], ball, k;
+    wd.max_bodies = 4;
+    wd.max_pairs = 2;
+    t = tw_make(&wd);
+    g.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&g, 5.0f, 0.5f);
+    g.position.y = -0.5f;
+    tw_add(&t, &g);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    bd.position.y = 0.5f;
+    box[0] = tw_add(&t, &bd);
+    bd.position.y = 1.5f;
+    box[1] = tw_add(&t, &bd);
+    tw_steps(&t, 120);
+    ck_assert(!carom_body_is_awake(t.w, box[0]) && !carom_body_is_awake(t.w, box[1]));
+    bd = carom_default_body_def();
+    bd.radius = 0.25f;
+    bd.position.y = 3.5f;
+    ball = tw_add(&t, &bd);
+    for (k = 0; k < 120 && st == CAROM_OK; ++k)
+        st = carom_world_step(t.w);
+    ck_assert_int_eq(st, CAROM_ERR_PAIR_CAPACITY);
+    ck_assert(!carom_body_is_awake(t.w, box[0]) && !carom_body_is_awake(t.w, box[1]));
+    ck_assert_int_eq(carom_body_set_force(t.w, box[1], (carom_vec2){0.0f, 0.0f}, 0.0f), CAROM_OK);
+    ck_assert(carom_body_is_awake(t.w, box[0]) && carom_body_is_awake(t.w, box[1]));
+    (void)ball;
+    tw_free(&t);
+}
+END_TEST
+
 /* ---- determinism pinned --------------------------------------------------- */
 
 static void add_ground(tw *t)
@@ -658,6 +696,7 @@ Suite *suite_robust(void)
     tcase_add_test(tf, test_finding_large_dt_and_gravity_keep_the_ball_on_the_floor);
     tcase_add_test(tf, test_failed_step_is_undone_bit_for_bit);
     tcase_add_test(tf, test_capacity_failure_changes_nothing);
+    tcase_add_test(tf, test_failed_step_restores_sleeping_islands);
     tcase_add_test(tp, test_final_state_hashes_are_pinned);
     suite_add_tcase(s, tc);
     suite_add_tcase(s, tf);

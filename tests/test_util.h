@@ -116,5 +116,6 @@ Suite *suite_events(void);
 Suite *suite_toi(void);
 Suite *suite_profile(void);
 Suite *suite_robust(void);
+Suite *suite_api(void);
 
 #endif

@@ -1,0 +1,180 @@
+/*
+ * touch.c -- contact reporting: which pairs touch after each step, and the
+ * begin-touch / end-touch events a program reads with
+ * carom_world_touch_events().
+ *
+ * The list of touching pairs persists from step to step, sorted by slot
+ * pair. At the end of a successful step the pairs touching now are
+ * collected (unsorted: the events methods add pairs during the step),
+ * together with the old touches of bodies that could not move this step
+ * (asleep or static: nothing looked at them, nothing changed); sorted,
+ * and merged against the old list: a pair only in the new list began
+ * touching, one only in the old list ended. A sensor's touches are its
+ * overlaps at the end of the step.
+ */
+#include "touch.h"
+
+#include "narrowphase.h"
+
+#if CAROM_ENABLE_TOUCH_EVENTS || CAROM_ENABLE_SENSORS
+
+static int cr_touch_less(const cr_touch *x, const cr_touch *y)
+{
+    int xb = x->b & ~CR_TOUCH_SENSOR, yb = y->b & ~CR_TOUCH_SENSOR;
+    return x->a < y->a || (x->a == y->a && xb < yb);
+}
+
+/* Heap sort: in place, no recursion, deterministic. */
+static void cr_touch_sift(cr_touch *t, int i, int n)
+{
+    for (;;) {
+        int c = 2 * i + 1, m = i;
+        cr_touch tmp;
+        if (c < n && cr_touch_less(&t[m], &t[c]))
+            m = c;
+        if (c + 1 < n && cr_touch_less(&t[m], &t[c + 1]))
+            m = c + 1;
+        if (m == i)
+            return;
+        tmp = t[i];
+        t[i] = t[m];
+        t[m] = tmp;
+        i = m;
+    }
+}
+
+static void cr_touch_sort(cr_touch *t, int n)
+{
+    int i;
+    for (i = n / 2 - 1; i >= 0; --i)
+        cr_touch_sift(t, i, n);
+    for (i = n - 1; i > 0; --i) {
+        cr_touch tmp = t[0];
+        t[0] = t[i];
+        t[i] = tmp;
+        cr_touch_sift(t, 0, i);
+    }
+}
+
+static void cr_touch_event(carom_world *w, const cr_touch *t, int begin)
+{
+    carom_touch_event *e;
+    if (w->touch_event_count >= w->max_touch_events) {
+        ++w->touch_events_dropped;
+        return;
+    }
+    e = &w->touch_events[w->touch_event_count++];
+    e->body_a = cr_body_id(w, t->a);
+    e->body_b = cr_body_id(w, t->b & ~CR_TOUCH_SENSOR);
+    e->begin = begin;
+    e->sensor = (t->b & CR_TOUCH_SENSOR) ? 1 : 0;
+}
+
+static int cr_still(const cr_body *b)
+{
+    return (b->flags & CR_BODY_ALIVE) &&
+           (b->type == CAROM_BODY_STATIC || !(b->flags & CR_BODY_AWAKE));
+}
+
+/* Does pair k touch at the end of this step? */
+static int cr_pair_touches(const carom_world *w, const cr_pair *p, int *sensor)
+{
+    const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
+    *sensor = ((A->flags | B->flags) & CR_BODY_SENSOR) ? 1 : 0;
+#if CAROM_ENABLE_SENSORS
+    if (*sensor)
+        return cr_lt(cr_separation(&w->info[p->a].shape, A->x, A->q, &w->info[p->b].shape,
+                                   B->x, B->q),
+                     0.0f);
+#endif
+    if (p->met & CR_PAIR_HIT)
+        return 1;
+    return p->contact >= 0 && (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING);
+}
+
+void cr_touch_update(carom_world *w)
+{
+    int n = 0, i, j, k;
+    w->touch_event_count = 0;
+    w->touch_events_dropped = 0;
+    for (k = 0; k < w->pair_count && n < w->touch_cap; ++k) {
+        const cr_pair *p = &w->pairs[k];
+        int sensor;
+        if (!cr_pair_touches(w, p, &sensor))
+            continue;
+#if !CAROM_ENABLE_TOUCH_EVENTS
+        if (!sensor)
+            continue;
+#endif
+        w->touch_next[n].a = p->a;
+        w->touch_next[n].b = p->b | (sensor ? CR_TOUCH_SENSOR : 0);
+        ++n;
+    }
+    /* what nothing could change keeps touching */
+    for (i = 0; i < w->touch_count && n < w->touch_cap; ++i) {
+        const cr_touch *t = &w->touch[i];
+        if (cr_still(&w->bodies[t->a]) && cr_still(&w->bodies[t->b & ~CR_TOUCH_SENSOR]))
+            w->touch_next[n++] = *t;
+    }
+    cr_touch_sort(w->touch_next, n);
+    /* a pair both found and carried (its bodies fell asleep this step)
+     * is there twice */
+    for (i = 1, j = 1; i < n; ++i)
+        if (cr_touch_less(&w->touch_next[j - 1], &w->touch_next[i]))
+            w->touch_next[j++] = w->touch_next[i];
+    n = n > 0 ? j : 0;
+    /* merge: begins and ends */
+    for (i = 0, j = 0; i < w->touch_count || j < n;) {
+        if (j >= n || (i < w->touch_count && cr_touch_less(&w->touch[i], &w->touch_next[j]))) {
+            cr_touch_event(w, &w->touch[i++], 0);
+        } else if (i >= w->touch_count || cr_touch_less(&w->touch_next[j], &w->touch[i])) {
+            cr_touch_event(w, &w->touch_next[j++], 1);
+        } else {
+            /* in both (the same pair) */
+            ++i;
+            ++j;
+        }
+    }
+    {
+        cr_touch *t = w->touch;
+        w->touch = w->touch_next;
+        w->touch_next = t;
+        w->touch_count = n;
+    }
+}
+
+void cr_touch_forget(carom_world *w, int s)
+{
+    int i, n = 0;
+    for (i = 0; i < w->touch_count; ++i)
+        if (w->touch[i].a != s && (w->touch[i].b & ~CR_TOUCH_SENSOR) != s)
+            w->touch[n++] = w->touch[i];
+    w->touch_count = n;
+}
+
+#else
+
+void cr_touch_update(carom_world *w)
+{
+    (void)w;
+}
+
+void cr_touch_forget(carom_world *w, int s)
+{
+    (void)w;
+    (void)s;
+}
+
+#endif
+
+const carom_touch_event *carom_world_touch_events(const carom_world *w, int *count)
+{
+    if (count)
+        *count = w ? w->touch_event_count : 0;
+    return w ? w->touch_events : 0;
+}
+
+int carom_world_touch_events_dropped(const carom_world *w)
+{
+    return w ? w->touch_events_dropped : 0;
+}

@@ -1,0 +1,710 @@
+/*
+ * test_api.c -- the calls a program makes between steps: body control,
+ * kinematic bodies, removal with stable ids, collision filtering, sensors,
+ * touch events and queries. Expected values are closed-form (impulse over
+ * mass, free fall, ray-circle intersections) or properties (a stale id is
+ * refused, a filtered pair never meets).
+ */
+#include <string.h>
+
+#include "test_util.h"
+
+static carom_world_def zero_g(int n)
+{
+    carom_world_def wd = carom_default_world_def();
+    wd.gravity.y = 0.0f;
+    wd.max_bodies = n;
+    wd.rest_speed = 0.0f;
+    return wd;
+}
+
+static int add_ball(tw *t, float r, float x, float y, float vx, float vy)
+{
+    carom_body_def bd = carom_default_body_def();
+    bd.radius = r;
+    bd.position.x = x;
+    bd.position.y = y;
+    bd.velocity.x = vx;
+    bd.velocity.y = vy;
+    bd.friction = 0.0f;
+    bd.restitution = 1.0f;
+    return tw_add(t, &bd);
+}
+
+static int add_ground(tw *t)
+{
+    carom_body_def g = carom_default_body_def();
+    g.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&g, 10.0f, 0.5f);
+    g.position.y = -0.5f;
+    return tw_add(t, &g);
+}
+
+/* ---- body control --------------------------------------------------------- */
+
+START_TEST(test_velocity_setters_and_getters)
+{
+    carom_world_def wd = zero_g(3);
+    tw t = tw_make(&wd);
+    int b = add_ball(&t, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f), g;
+    carom_vec2 v = {3.0f, -4.0f}, got;
+    float om;
+    carom_body_def sd = carom_default_body_def();
+    sd.type = CAROM_BODY_STATIC;
+    sd.position.x = 5.0f;
+    g = tw_add(&t, &sd);
+    ck_assert_int_eq(carom_body_set_velocity(t.w, b, v), CAROM_OK);
+    ck_assert_int_eq(carom_body_set_angular_velocity(t.w, b, 2.5f), CAROM_OK);
+    ck_assert_int_eq(carom_body_get_velocity(t.w, b, &got, &om), CAROM_OK);
+    ck_assert(got.x == 3.0f && got.y == -4.0f && om == 2.5f);
+    ck_assert_int_eq(carom_body_get_velocity(t.w, b, NULL, NULL), CAROM_OK);
+    /* one step of free flight: x = v dt exactly in zero gravity */
+    tw_steps(&t, 1);
+    ck_assert_close(tw_state(&t, b).position.x, 3.0 / 60.0, 1e-6);
+    /* refused: static bodies, NaN, out of range */
+    ck_assert_int_eq(carom_body_set_velocity(t.w, g, v), CAROM_ERR_BAD_BODY_TYPE);
+    v.x = NAN;
+    ck_assert_int_eq(carom_body_set_velocity(t.w, b, v), CAROM_ERR_NOT_FINITE);
+    v.x = 2.0f * CAROM_LIMIT_MAX_SPEED;
+    ck_assert_int_eq(carom_body_set_velocity(t.w, b, v), CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_set_angular_velocity(t.w, b, INFINITY), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_get_velocity(t.w, b, &got, NULL), CAROM_OK);
+    ck_assert(got.x == 3.0f); /* unchanged by the refused calls */
+    tw_free(&t);
+}
+END_TEST
+
+/* An impulse J at a point r from the centre: dv = J / m, dw = (r x J) / I. */
+START_TEST(test_impulse_at_a_point_changes_velocity_exactly)
+{
+    carom_world_def wd = zero_g(2);
+    tw t = tw_make(&wd);
+    carom_body_def bd = carom_default_body_def();
+    carom_vec2 J = {0.0f, 2.0f}, p = {0.5f, 0.0f}, v;
+    float m, I, om;
+    int b;
+    carom_body_def_set_box(&bd, 0.5f, 0.25f);
+    b = tw_add(&t, &bd);
+    carom_body_get_mass(t.w, b, &m, &I);
+    ck_assert_int_eq(carom_body_apply_impulse(t.w, b, J, p), CAROM_OK);
+    carom_body_get_velocity(t.w, b, &v, &om);
+    ck_assert_close(v.y, 2.0 / m, 1e-6);
+    ck_assert_close(om, 0.5 * 2.0 / I, 1e-6);
+    ck_assert_int_eq(carom_body_apply_angular_impulse(t.w, b, -1.0f), CAROM_OK);
+    carom_body_get_velocity(t.w, b, &v, &om);
+    ck_assert_close(om, (1.0 - 1.0) / I, 1e-6);
+    J.x = NAN;
+    ck_assert_int_eq(carom_body_apply_impulse(t.w, b, J, p), CAROM_ERR_NOT_FINITE);
+    tw_free(&t);
+}
+END_TEST
+
+/* A force for one step only, in zero gravity: after that step v = F dt / m
+ * and x = F dt^2 / (2 m); afterwards the body coasts. */
+START_TEST(test_one_step_force_and_torque)
+{
+    carom_world_def wd = zero_g(1);
+    tw t = tw_make(&wd);
+    carom_body_def bd = carom_default_body_def();
+    const double dt = 1.0 / 60.0;
+    carom_vec2 F = {6.0f, 0.0f}, at;
+    carom_body_state s;
+    float m, I;
+    int b;
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    b = tw_add(&t, &bd);
+    carom_body_get_mass(t.w, b, &m, &I);
+    at = tw_state(&t, b).center;
+    ck_assert_int_eq(carom_body_apply_force(t.w, b, F, at), CAROM_OK);
+    ck_assert_int_eq(carom_body_apply_force(t.w, b, F, at), CAROM_OK); /* adds up */
+    ck_assert_int_eq(carom_body_apply_torque(t.w, b, 3.0f), CAROM_OK);
+    tw_steps(&t, 1);
+    s = tw_state(&t, b);
+    ck_assert_close(s.velocity.x, 12.0 * dt / m, 1e-5);
+    ck_assert_close(s.position.x, 12.0 * dt * dt / (2.0 * m), 1e-5);
+    ck_assert_close(s.angular_velocity, 3.0 * dt / I, 1e-5);
+    tw_steps(&t, 3);
+    s = tw_state(&t, b);
+    ck_assert_close(s.velocity.x, 12.0 * dt / m, 1e-5);
+    ck_assert_close(s.angular_velocity, 3.0 * dt / I, 1e-5);
+    ck_assert_int_eq(carom_body_apply_torque(t.w, b, NAN), CAROM_ERR_NOT_FINITE);
+    tw_free(&t);
+}
+END_TEST
+
+/* Teleporting a box resting on the ground up into the air: its contact is
+ * forgotten, it falls freely from there (y = y0 - g t^2 / 2 at the step
+ * ends, Verlet being exact under constant gravity). */
+START_TEST(test_set_transform_teleports_and_forgets_contacts)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_vec2 up = {1.0f, 5.0f};
+    carom_body_state s;
+    tw t;
+    int b, k;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    add_ground(&t);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    bd.position.y = 0.5f;
+    b = tw_add(&t, &bd);
+    tw_steps(&t, 30);
+    ck_assert_int_eq(carom_body_set_transform(t.w, b, up, carom_rot_from_angle(0.5f)),
+                     CAROM_OK);
+    s = tw_state(&t, b);
+    ck_assert(s.position.x == 1.0f && s.position.y == 5.0f);
+    ck_assert_close(carom_rot_angle(s.rotation), 0.5, 1e-6);
+    for (k = 1; k <= 20; ++k) {
+        double tt = k / 60.0;
+        tw_steps(&t, 1);
+        s = tw_state(&t, b);
+        ck_assert_close(s.position.y, 5.0 - 5.0 * tt * tt, 1e-5);
+    }
+    ck_assert_int_eq(carom_body_set_transform(t.w, b, up, (carom_rot){0.0f, 0.0f}),
+                     CAROM_ERR_BAD_ROTATION);
+    up.y = NAN;
+    ck_assert_int_eq(carom_body_set_transform(t.w, b, up, carom_rot_from_angle(0.0f)),
+                     CAROM_ERR_NOT_FINITE);
+    tw_free(&t);
+}
+END_TEST
+
+START_TEST(test_material_and_user_data_setters)
+{
+    carom_world_def wd = carom_default_world_def();
+    tw t;
+    int ground, b, k, x = 42;
+    float top = -1.0f;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    ground = add_ground(&t);
+    b = add_ball(&t, 0.25f, 0.0f, 2.25f, 0.0f, 0.0f);
+    ck_assert_int_eq(carom_body_set_restitution(t.w, b, 0.5f), CAROM_OK);
+    ck_assert_int_eq(carom_body_set_restitution(t.w, ground, 0.5f), CAROM_OK);
+    ck_assert_int_eq(carom_body_set_restitution(t.w, b, 1.5f), CAROM_ERR_BAD_RESTITUTION);
+    ck_assert_int_eq(carom_body_set_friction(t.w, b, -1.0f), CAROM_ERR_BAD_FRICTION);
+    ck_assert_int_eq(carom_body_set_friction(t.w, b, 0.2f), CAROM_OK);
+    /* dropped 2 m with e = 0.5: it rebounds to 2 e^2 = 0.5 m */
+    for (k = 0; k < 100; ++k) {
+        carom_body_state s;
+        tw_steps(&t, 1);
+        s = tw_state(&t, b);
+        if (k > 45 && s.position.y - 0.25f > top)
+            top = s.position.y - 0.25f;
+    }
+    ck_assert_close(top, 0.5, 0.02);
+    ck_assert_ptr_null(carom_body_get_user_data(t.w, b));
+    ck_assert_int_eq(carom_body_set_user_data(t.w, b, &x), CAROM_OK);
+    ck_assert_ptr_eq(carom_body_get_user_data(t.w, b), &x);
+    ck_assert_ptr_null(carom_body_get_user_data(t.w, 999));
+    tw_free(&t);
+}
+END_TEST
+
+/* ---- kinematic bodies ----------------------------------------------------- */
+
+/* A kinematic paddle moving at u strikes a resting ball (e = 1): the impact
+ * is at gap / u exactly, the ball leaves at 2u, the paddle keeps u. */
+START_TEST(test_kinematic_paddle_pushes_and_is_not_pushed)
+{
+    carom_world_def wd = zero_g(2);
+    carom_body_def pd = carom_default_body_def();
+    const carom_event *ev = NULL;
+    carom_vec2 v;
+    tw t;
+    int p, b, n = 0, k;
+    wd.method = CAROM_METHOD_EVENTS;
+    t = tw_make(&wd);
+    pd.type = CAROM_BODY_KINEMATIC;
+    carom_body_def_set_box(&pd, 0.25f, 1.0f);
+    pd.restitution = 1.0f;
+    pd.friction = 0.0f;
+    p = tw_add(&t, &pd);
+    ck_assert_int_eq(carom_body_set_velocity(t.w, p, (carom_vec2){2.0f, 0.0f}), CAROM_OK);
+    b = add_ball(&t, 0.5f, 1.75f, 0.0f, 0.0f, 0.0f); /* gap 1 m */
+    for (k = 0; k < 60 && n == 0; ++k) {
+        tw_steps(&t, 1);
+        ev = carom_world_events(t.w, &n);
+    }
+    ck_assert_int_eq(n, 1);
+    ck_assert_close(ev[0].t, 0.5, 1e-6);
+    carom_body_get_velocity(t.w, b, &v, NULL);
+    ck_assert_close(v.x, 4.0, 1e-5);
+    carom_body_get_velocity(t.w, p, &v, NULL);
+    ck_assert(v.x == 2.0f && v.y == 0.0f);
+    tw_free(&t);
+}
+END_TEST
+
+/* A kinematic platform carries a box up against gravity (friction holds it
+ * on the platform while both rise). */
+START_TEST(test_kinematic_platform_lifts_a_box)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def pd = carom_default_body_def(), bd = carom_default_body_def();
+    carom_body_state s;
+    tw t;
+    int p, b;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    pd.type = CAROM_BODY_KINEMATIC;
+    carom_body_def_set_box(&pd, 2.0f, 0.25f);
+    pd.velocity.y = 1.0f;
+    p = tw_add(&t, &pd);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    bd.position.y = 0.75f;
+    b = tw_add(&t, &bd);
+    tw_steps(&t, 120);
+    s = tw_state(&t, b);
+    /* the platform is at y = 2 after 2 s; the box rests on it */
+    ck_assert_close(tw_state(&t, p).position.y, 2.0, 1e-5);
+    ck_assert_close(s.position.y, 2.75, 0.02);
+    ck_assert_close(s.velocity.y, 1.0, 0.05);
+    tw_free(&t);
+}
+END_TEST
+
+/* ---- removal ------------------------------------------------------------------ */
+
+START_TEST(test_removal_frees_the_slot_and_refuses_stale_ids)
+{
+    carom_world_def wd = zero_g(2);
+    tw t = tw_make(&wd);
+    carom_body_state s;
+    carom_vec2 v = {1.0f, 0.0f};
+    int a = add_ball(&t, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f);
+    int b = add_ball(&t, 0.5f, 3.0f, 0.0f, 0.0f, 0.0f), c;
+    ck_assert_int_eq(carom_world_remove_body(t.w, a), CAROM_OK);
+    ck_assert_int_eq(carom_world_body_count(t.w), 1);
+    ck_assert(!carom_body_is_valid(t.w, a));
+    ck_assert(carom_body_is_valid(t.w, b));
+    /* every call refuses the stale id */
+    ck_assert_int_eq(carom_body_get_state(t.w, a, &s), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_body_set_velocity(t.w, a, v), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_body_apply_impulse(t.w, a, v, v), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_world_remove_body(t.w, a), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_body_set_force(t.w, a, v, 0.0f), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_world_remove_body(t.w, 12345), CAROM_ERR_BAD_BODY_ID);
+    /* the slot is reused, with a new id */
+    c = add_ball(&t, 0.5f, -3.0f, 0.0f, 0.0f, 0.0f);
+    ck_assert_int_ne(c, a);
+    ck_assert_int_eq(c & ((1 << CAROM_ID_INDEX_BITS) - 1), a & ((1 << CAROM_ID_INDEX_BITS) - 1));
+    ck_assert_int_eq(carom_body_get_state(t.w, a, &s), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_body_get_state(t.w, c, &s), CAROM_OK);
+    ck_assert(s.position.x == -3.0f);
+    ck_assert_int_eq(carom_world_body_count(t.w), 2);
+    tw_steps(&t, 5);
+    tw_free(&t);
+}
+END_TEST
+
+/* Removing the ground under a settled (sleeping) stack: the stack wakes and
+ * falls freely, and no warm start of the ground's contacts reaches the
+ * body that takes its slot. */
+START_TEST(test_removing_a_support_wakes_and_drops_what_it_held)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int ground, boxes[3], i, k, other;
+    wd.max_bodies = 5;
+    t = tw_make(&wd);
+    ground = add_ground(&t);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    for (i = 0; i < 3; ++i) {
+        bd.position.y = 0.5f + (float)i;
+        boxes[i] = tw_add(&t, &bd);
+    }
+    tw_steps(&t, 120);
+    ck_assert(!carom_body_is_awake(t.w, boxes[2])); /* asleep */
+    ck_assert_int_eq(carom_world_remove_body(t.w, ground), CAROM_OK);
+    ck_assert(carom_body_is_awake(t.w, boxes[0]) && carom_body_is_awake(t.w, boxes[2]));
+    /* a new static body in the ground's slot, far away */
+    bd = carom_default_body_def();
+    bd.type = CAROM_BODY_STATIC;
+    bd.position.x = 100.0f;
+    other = tw_add(&t, &bd);
+    (void)other;
+    for (k = 1; k <= 30; ++k) {
+        double tt = k / 60.0;
+        tw_steps(&t, 1);
+        for (i = 0; i < 3; ++i)
+            ck_assert_close(tw_state(&t, boxes[i]).position.y, 0.5 + i - 5.0 * tt * tt, 2e-3);
+    }
+    tw_free(&t);
+}
+END_TEST
+
+/* Removal in mid-impact: a ball about to strike another is removed; the
+ * other never moves and every step succeeds. */
+START_TEST(test_removal_mid_simulation_leaves_nothing_dangling)
+{
+    carom_world_def wd = zero_g(3);
+    tw t = tw_make(&wd);
+    int a = add_ball(&t, 0.5f, 0.0f, 0.0f, 10.0f, 0.0f);
+    int b = add_ball(&t, 0.5f, 1.2f, 0.0f, 0.0f, 0.0f);
+    tw_steps(&t, 1);
+    ck_assert_int_eq(carom_world_remove_body(t.w, a), CAROM_OK);
+    tw_steps(&t, 30);
+    ck_assert(tw_state(&t, b).velocity.x == 0.0f);
+    tw_free(&t);
+}
+END_TEST
+
+/* ---- filtering ---------------------------------------------------------------- */
+
+/* Two balls on a collision course: they bounce unless the filter says no. */
+static int balls_meet(uint32_t cat_a, uint32_t mask_a, int group_a, uint32_t cat_b,
+                      uint32_t mask_b, int group_b)
+{
+    carom_world_def wd = zero_g(2);
+    carom_body_def bd = carom_default_body_def();
+    tw t = tw_make(&wd);
+    int met;
+    bd.restitution = 1.0f;
+    bd.friction = 0.0f;
+    bd.position.x = -2.0f;
+    bd.velocity.x = 2.0f;
+    bd.category_bits = cat_a;
+    bd.mask_bits = mask_a;
+    bd.group_index = group_a;
+    tw_add(&t, &bd);
+    bd.position.x = 2.0f;
+    bd.velocity.x = -2.0f;
+    bd.category_bits = cat_b;
+    bd.mask_bits = mask_b;
+    bd.group_index = group_b;
+    tw_add(&t, &bd);
+    tw_steps(&t, 120);
+    met = tw_state(&t, 0).velocity.x < 0.0f;
+    if (!met)
+        ck_assert(tw_state(&t, 0).position.x > 2.0f); /* passed through */
+    tw_free(&t);
+    return met;
+}
+
+START_TEST(test_collision_filter_bits_and_groups)
+{
+    ck_assert(balls_meet(1u, 0xffffffffu, 0, 1u, 0xffffffffu, 0));
+    ck_assert(!balls_meet(1u, 0xfffffffdu, 0, 2u, 0xffffffffu, 0)); /* a ignores 2 */
+    ck_assert(!balls_meet(1u, 0xffffffffu, 0, 2u, 0xfffffffeu, 0)); /* b ignores 1 */
+    ck_assert(balls_meet(1u, 2u, 0, 2u, 1u, 0));
+    ck_assert(!balls_meet(1u, 0xffffffffu, -3, 1u, 0xffffffffu, -3)); /* same negative */
+    ck_assert(balls_meet(1u, 0u, 4, 1u, 0u, 4));                     /* same positive */
+    ck_assert(!balls_meet(1u, 0u, 4, 1u, 0u, 5));                    /* groups differ */
+}
+END_TEST
+
+START_TEST(test_filter_set_after_creation)
+{
+    carom_world_def wd = zero_g(2);
+    tw t = tw_make(&wd);
+    int a = add_ball(&t, 0.5f, -2.0f, 0.0f, 2.0f, 0.0f);
+    add_ball(&t, 0.5f, 2.0f, 0.0f, -2.0f, 0.0f);
+    ck_assert_int_eq(carom_body_set_filter(t.w, a, 1u, 0u, 0), CAROM_OK);
+    tw_steps(&t, 120);
+    ck_assert(tw_state(&t, a).position.x > 2.0f);
+    tw_free(&t);
+}
+END_TEST
+
+/* ---- sensors and touch events ----------------------------------------------------- */
+
+/* A ball falls through a static sensor box: no impulse (free fall exactly),
+ * one begin event when it first overlaps, one end event after it leaves. */
+START_TEST(test_sensor_reports_overlap_without_impulse)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def sd = carom_default_body_def();
+    tw t;
+    int sensor, ball, k, begins = 0, ends = 0, begin_step = -1, end_step = -1;
+    wd.max_bodies = 2;
+    wd.enable_sleep = 0;
+    t = tw_make(&wd);
+    sd.type = CAROM_BODY_STATIC;
+    sd.is_sensor = 1;
+    carom_body_def_set_box(&sd, 2.0f, 0.5f);
+    sensor = tw_add(&t, &sd);
+    ball = add_ball(&t, 0.25f, 0.0f, 2.1f, 0.0f, 0.0f);
+    for (k = 1; k <= 90; ++k) {
+        int n, i;
+        const carom_touch_event *e;
+        double tt = k / 60.0;
+        tw_steps(&t, 1);
+        ck_assert_close(tw_state(&t, ball).position.y, 2.1 - 5.0 * tt * tt, 1e-5);
+        e = carom_world_touch_events(t.w, &n);
+        for (i = 0; i < n; ++i) {
+            ck_assert_int_eq(e[i].sensor, 1);
+            ck_assert_int_eq(e[i].body_a, sensor);
+            ck_assert_int_eq(e[i].body_b, ball);
+            if (e[i].begin) {
+                ++begins;
+                begin_step = k;
+            } else {
+                ++ends;
+                end_step = k;
+            }
+        }
+    }
+    ck_assert_int_eq(begins, 1);
+    ck_assert_int_eq(ends, 1);
+    /* overlapping from the first step end with y - 0.25 < 0.5, i.e.
+     * 5 t^2 > 1.35, until y + 0.25 < -0.5, i.e. 5 t^2 > 2.85 */
+    ck_assert_int_eq(begin_step, (int)floor(60.0 * sqrt(1.35 / 5.0)) + 1);
+    ck_assert_int_eq(end_step, (int)floor(60.0 * sqrt(2.85 / 5.0)) + 1);
+    tw_free(&t);
+}
+END_TEST
+
+/* A box dropped on the ground: one begin-touch when it lands, none while it
+ * rests (or sleeps), one end-touch when it is thrown up. The buffer holds
+ * max_touch_events; the rest are counted as dropped. */
+START_TEST(test_touch_events_begin_end_and_full_buffer)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int g, b, c, k, n, begins = 0, ends = 0;
+    const carom_touch_event *e;
+    wd.max_bodies = 3;
+    wd.max_touch_events = 1;
+    t = tw_make(&wd);
+    g = add_ground(&t);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    bd.position.x = -2.0f;
+    bd.position.y = 1.0f;
+    b = tw_add(&t, &bd);
+    bd.position.x = 2.0f;
+    c = tw_add(&t, &bd);
+    for (k = 0; k < 200; ++k) {
+        tw_steps(&t, 1);
+        e = carom_world_touch_events(t.w, &n);
+        ck_assert_int_le(n, 1);
+        if (n == 1) {
+            ck_assert_int_eq(e[0].begin, 1);
+            ck_assert_int_eq(e[0].body_a, g);
+            ++begins;
+            /* both land in the same step: one kept, one dropped */
+            ck_assert_int_eq(carom_world_touch_events_dropped(t.w), 1);
+        }
+    }
+    ck_assert_int_eq(begins, 1);
+    ck_assert_int_eq(carom_body_set_velocity(t.w, b, (carom_vec2){0.0f, 5.0f}), CAROM_OK);
+    for (k = 0; k < 10; ++k) {
+        tw_steps(&t, 1);
+        e = carom_world_touch_events(t.w, &n);
+        if (n == 1 && !e[0].begin) {
+            ck_assert_int_eq(e[0].body_b, b);
+            ++ends;
+        }
+    }
+    ck_assert_int_eq(ends, 1);
+    (void)c;
+    tw_free(&t);
+}
+END_TEST
+
+/* ---- queries -------------------------------------------------------------------- */
+
+typedef struct found_set {
+    int ids[16];
+    int n;
+} found_set;
+
+static int collect(void *ctx, int body)
+{
+    found_set *f = (found_set *)ctx;
+    if (f->n < 16)
+        f->ids[f->n++] = body;
+    return 1;
+}
+
+static int has(const found_set *f, int id)
+{
+    int i;
+    for (i = 0; i < f->n; ++i)
+        if (f->ids[i] == id)
+            return 1;
+    return 0;
+}
+
+/* A circle, a rotated box and a triangle; the same answers before the
+ * first step (every body scanned) and after it (through the grid). */
+START_TEST(test_box_and_point_queries_are_exact)
+{
+    carom_world_def wd = zero_g(3);
+    carom_body_def bd = carom_default_body_def();
+    tw t = tw_make(&wd);
+    int circle, box, tri, pass;
+    circle = add_ball(&t, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f);
+    carom_body_def_set_box(&bd, 1.0f, 1.0f);
+    bd.position.x = 5.0f;
+    bd.rotation = carom_rot_from_angle(0.78539816f); /* a diamond */
+    box = tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    bd.shape = CAROM_SHAPE_POLYGON;
+    bd.vertex_count = 3;
+    bd.vertices[0] = (carom_vec2){0.0f, 0.0f};
+    bd.vertices[1] = (carom_vec2){2.0f, 0.0f};
+    bd.vertices[2] = (carom_vec2){0.0f, 2.0f};
+    bd.position.x = 10.0f;
+    tri = tw_add(&t, &bd);
+    for (pass = 0; pass < 2; ++pass) {
+        found_set f;
+        /* the box [0.8, 1]^2 is inside the circle's bounding box but
+         * outside the circle (its nearest corner is at 0.8 sqrt 2 > 1) */
+        f.n = 0;
+        carom_world_query_box(t.w, (carom_vec2){0.8f, 0.8f}, (carom_vec2){1.0f, 1.0f}, collect, &f);
+        ck_assert_int_eq(f.n, 0);
+        f.n = 0;
+        carom_world_query_box(t.w, (carom_vec2){0.6f, 0.6f}, (carom_vec2){1.0f, 1.0f}, collect, &f);
+        ck_assert(f.n == 1 && has(&f, circle));
+        /* near the diamond's corner region, outside its edges */
+        f.n = 0;
+        carom_world_query_box(t.w, (carom_vec2){5.8f, 0.8f}, (carom_vec2){6.2f, 1.2f}, collect, &f);
+        ck_assert_int_eq(f.n, 0);
+        f.n = 0;
+        carom_world_query_box(t.w, (carom_vec2){5.5f, 0.5f}, (carom_vec2){6.2f, 1.2f}, collect, &f);
+        ck_assert(f.n == 1 && has(&f, box));
+        /* across everything */
+        f.n = 0;
+        carom_world_query_box(t.w, (carom_vec2){-2.0f, -0.1f}, (carom_vec2){11.0f, 0.1f}, collect, &f);
+        ck_assert(f.n == 3 && has(&f, circle) && has(&f, box) && has(&f, tri));
+        /* points: inside the triangle, beyond its hypotenuse */
+        f.n = 0;
+        carom_world_query_point(t.w, (carom_vec2){10.9f, 0.9f}, collect, &f);
+        ck_assert(f.n == 1 && has(&f, tri));
+        f.n = 0;
+        carom_world_query_point(t.w, (carom_vec2){11.1f, 1.0f}, collect, &f);
+        ck_assert_int_eq(f.n, 0);
+        f.n = 0;
+        carom_world_query_point(t.w, (carom_vec2){0.7f, 0.7f}, collect, &f);
+        ck_assert(f.n == 1 && has(&f, circle));
+        tw_steps(&t, 1);
+    }
+    ck_assert_int_eq(carom_world_query_point(t.w, (carom_vec2){NAN, 0.0f}, collect, NULL),
+                     CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_world_query_point(t.w, (carom_vec2){0.0f, 0.0f}, NULL, NULL),
+                     CAROM_ERR_NULL);
+    tw_free(&t);
+}
+END_TEST
+
+/* Rays: the hit point, normal and fraction against a circle (closed form)
+ * and a box face; all hits in order; a ray from inside a shape does not
+ * hit it. */
+START_TEST(test_raycasts_are_exact_and_ordered)
+{
+    carom_world_def wd = zero_g(3);
+    carom_body_def bd = carom_default_body_def();
+    tw t = tw_make(&wd);
+    carom_ray_hit h, all[2];
+    int found, n, circle, box;
+    circle = add_ball(&t, 1.0f, 0.0f, 0.0f, 0.0f, 0.0f);
+    carom_body_def_set_box(&bd, 0.5f, 2.0f);
+    bd.position.x = 5.0f;
+    box = tw_add(&t, &bd);
+    add_ball(&t, 0.5f, 9.0f, 0.0f, 0.0f, 0.0f);
+    /* from (-5, 0.5) along +x: enters the circle at x = -sqrt(1 - 0.25) */
+    ck_assert_int_eq(carom_world_raycast(t.w, (carom_vec2){-5.0f, 0.5f}, (carom_vec2){15.0f, 0.5f},
+                                         &h, &found),
+                     CAROM_OK);
+    ck_assert_int_eq(found, 1);
+    ck_assert_int_eq(h.body, circle);
+    ck_assert_close(h.point.x, -sqrt(0.75), 1e-6);
+    ck_assert_close(h.point.y, 0.5, 1e-6);
+    ck_assert_close(h.normal.x, -sqrt(0.75), 1e-6);
+    ck_assert_close(h.normal.y, 0.5, 1e-6);
+    ck_assert_close(h.fraction, (5.0 - sqrt(0.75)) / 20.0, 1e-6);
+    /* above the circle: the box's left face at x = 4.5 */
+    carom_world_raycast(t.w, (carom_vec2){-5.0f, 1.5f}, (carom_vec2){15.0f, 1.5f}, &h, &found);
+    ck_assert(found == 1 && h.body == box);
+    ck_assert_close(h.point.x, 4.5, 1e-6);
+    ck_assert_close(h.normal.x, -1.0, 1e-6);
+    ck_assert_close(h.fraction, 9.5 / 20.0, 1e-6);
+    /* every hit, nearest first, two stored of three */
+    ck_assert_int_eq(carom_world_raycast_all(t.w, (carom_vec2){-5.0f, 0.0f},
+                                             (carom_vec2){15.0f, 0.0f}, all, 2, &n),
+                     CAROM_OK);
+    ck_assert_int_eq(n, 3);
+    ck_assert(all[0].body == circle && all[1].body == box);
+    ck_assert_close(all[0].fraction, 4.0 / 20.0, 1e-6);
+    ck_assert_close(all[1].fraction, 9.5 / 20.0, 1e-6);
+    /* from inside the circle: the box is the first hit */
+    carom_world_raycast(t.w, (carom_vec2){0.0f, 0.0f}, (carom_vec2){15.0f, 0.0f}, &h, &found);
+    ck_assert(found == 1 && h.body == box);
+    /* nothing there */
+    carom_world_raycast(t.w, (carom_vec2){-5.0f, 5.0f}, (carom_vec2){15.0f, 5.0f}, &h, &found);
+    ck_assert_int_eq(found, 0);
+    ck_assert_int_eq(carom_world_raycast_all(t.w, (carom_vec2){0, 0}, (carom_vec2){1, 0}, all, -1, &n),
+                     CAROM_ERR_BAD_CAPACITY);
+    ck_assert_int_eq(carom_world_raycast(t.w, (carom_vec2){0, 0}, (carom_vec2){INFINITY, 0}, &h, &found),
+                     CAROM_ERR_NOT_FINITE);
+    tw_free(&t);
+}
+END_TEST
+
+/* NULL worlds and bad ids through every new call. */
+START_TEST(test_new_calls_refuse_null_and_bad_ids)
+{
+    carom_world_def wd = zero_g(1);
+    tw t = tw_make(&wd);
+    carom_vec2 z = {0.0f, 0.0f};
+    carom_body_type ty;
+    int bad = 77;
+    ck_assert_int_eq(carom_world_remove_body(NULL, 0), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_velocity(NULL, 0, z), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_transform(NULL, 0, z, carom_rot_from_angle(0)), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_get_type(t.w, 0, NULL), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_get_type(t.w, bad, &ty), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_set_velocity(t.w, bad, z), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_set_angular_velocity(t.w, bad, 0), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_apply_force(t.w, bad, z, z), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_apply_torque(t.w, bad, 0), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_apply_angular_impulse(t.w, bad, 0), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_set_restitution(t.w, bad, 0), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_set_friction(t.w, bad, 0), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_set_user_data(t.w, bad, NULL), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_set_filter(t.w, bad, 1u, 1u, 0), CAROM_ERR_BAD_BODY_ID);
+    ck_assert(!carom_body_is_valid(NULL, 0));
+    ck_assert_ptr_null(carom_world_touch_events(NULL, NULL));
+    ck_assert_int_eq(carom_world_touch_events_dropped(NULL), 0);
+    tw_free(&t);
+}
+END_TEST
+
+Suite *suite_api(void)
+{
+    Suite *s = suite_create("api");
+    TCase *tb = tcase_create("body control");
+    TCase *tk = tcase_create("kinematic");
+    TCase *tr = tcase_create("removal");
+    TCase *tf = tcase_create("filtering");
+    TCase *te = tcase_create("touch");
+    TCase *tq = tcase_create("queries");
+    tcase_add_test(tb, test_velocity_setters_and_getters);
+    tcase_add_test(tb, test_impulse_at_a_point_changes_velocity_exactly);
+    tcase_add_test(tb, test_one_step_force_and_torque);
+    tcase_add_test(tb, test_set_transform_teleports_and_forgets_contacts);
+    tcase_add_test(tb, test_material_and_user_data_setters);
+    tcase_add_test(tb, test_new_calls_refuse_null_and_bad_ids);
+    tcase_add_test(tk, test_kinematic_paddle_pushes_and_is_not_pushed);
+    tcase_add_test(tk, test_kinematic_platform_lifts_a_box);
+    tcase_add_test(tr, test_removal_frees_the_slot_and_refuses_stale_ids);
+    tcase_add_test(tr, test_removing_a_support_wakes_and_drops_what_it_held);
+    tcase_add_test(tr, test_removal_mid_simulation_leaves_nothing_dangling);
+    tcase_add_test(tf, test_collision_filter_bits_and_groups);
+    tcase_add_test(tf, test_filter_set_after_creation);
+    tcase_add_test(te, test_sensor_reports_overlap_without_impulse);
+    tcase_add_test(te, test_touch_events_begin_end_and_full_buffer);
+    tcase_add_test(tq, test_box_and_point_queries_are_exact);
+    tcase_add_test(tq, test_raycasts_are_exact_and_ordered);
+    suite_add_tcase(s, tb);
+    suite_add_tcase(s, tk);
+    suite_add_tcase(s, tr);
+    suite_add_tcase(s, tf);
+    suite_add_tcase(s, te);
+    suite_add_tcase(s, tq);
+    return s;
+}
