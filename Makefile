@@ -44,12 +44,28 @@ include mk/install.mk
 # The scene suite on emulated Cortex-M (tools/embedded/embedded.mk):
 # check-embedded, check-embedded-negative, embedded-insn, embedded-size.
 include tools/embedded/embedded.mk
+# make docs-check: every path, file and make target the docs name exists.
+include mk/docs.mk
 HAVE_BOX2D := $(shell pkg-config --exists box2d 2>/dev/null && echo yes)
 
 .PHONY: validate-check check-cross bench all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
-.PHONY: help-check
+.PHONY: help-check examples-check header-example-check
 
-all: $(LIB) $(CLI) $(if $(HAVE_BOX2D),$(BOX2D_BIN))
+EXAMPLES := $(patsubst examples/%.c,$(BUILD)/examples/%,$(wildcard examples/*.c))
+
+all: $(LIB) $(CLI) $(EXAMPLES) $(if $(HAVE_BOX2D),$(BOX2D_BIN))
+
+# The example programs (examples/): plain C against the public header and
+# the library, as a program of yours would be.
+$(BUILD)/examples/%: examples/%.c include/carom.h include/carom_config.h $(LIB) | $(BUILD)/examples
+	$(CC) $(CPPFLAGS) $(CFLAGS) $< $(LIB) -o $@ $(LDFLAGS) -lm
+
+$(BUILD)/examples:
+	mkdir -p $@
+
+# Each example runs headless and checks its own outcome (exit status).
+examples-check: $(EXAMPLES)
+	@for e in $(EXAMPLES); do echo "$$e"; $$e || exit 1; done
 
 lib: $(LIB)
 cli: $(CLI)
@@ -109,6 +125,14 @@ readme-test: $(LIB) | $(BUILD)/tests
 	$(CC) $(CPPFLAGS) $(CFLAGS) $(BUILD)/tests/readme_example.c $(LIB) -lm -o $(BUILD)/tests/readme_example
 	$(BUILD)/tests/readme_example
 
+# The minimal program in carom.h's opening comment must compile and run
+# (and print what the comment says it prints).
+header-example-check: $(LIB) | $(BUILD)/tests
+	sh tools/header-example.sh include/carom.h $(BUILD)/tests/header_example.c
+	$(CC) $(CPPFLAGS) $(CFLAGS) $(BUILD)/tests/header_example.c $(LIB) -lm -o $(BUILD)/tests/header_example
+	$(BUILD)/tests/header_example > $(BUILD)/tests/header_example.out
+	grep -q "^ball at 0 0.5$$" $(BUILD)/tests/header_example.out || { cat $(BUILD)/tests/header_example.out; echo "header example: not the output its comment promises" >&2; exit 1; }
+
 # The library must not allocate, and must call no libm function but sqrtf:
 # inspect the undefined symbols of the built archive.
 check-symbols: $(LIB) $(PROF_LIB)
@@ -138,6 +162,8 @@ check: deps
 	@$(MAKE) --no-print-directory check-cross
 	@$(MAKE) --no-print-directory unit
 	@$(MAKE) --no-print-directory readme-test
+	@$(MAKE) --no-print-directory header-example-check
+	@$(MAKE) --no-print-directory examples-check
 	@$(MAKE) --no-print-directory validate-check
 	@$(MAKE) --no-print-directory cli-test
 	@$(MAKE) --no-print-directory stress-check
@@ -181,6 +207,8 @@ help:
 	@echo "  make unit            the Check unit tests, plain and profiling builds"
 	@echo "  make cli-test        $(CLI)'s command-line tests (tests/cli_test.sh)"
 	@echo "  make readme-test     the README's example program compiles and runs"
+	@echo "  make header-example-check  the minimal program in carom.h's opening comment compiles, runs and prints what it says"
+	@echo "  make examples-check  build/examples/breakout and balance run headless and check their outcome"
 	@echo "  make check-symbols   the archives call no allocator and no libm function but sqrtf"
 	@echo "  make check-switches  every switch of include/carom_config.h builds and removes code"
 	@echo "  make check-cross     the core builds for a Cortex-M4F (skipped without arm-none-eabi-gcc)"
@@ -193,6 +221,7 @@ help:
 	@echo "  make install-test    install into a temporary DESTDIR, build and run a program with pkg-config, uninstall"
 	@echo "  make check-cxx       include/carom.h compiles as C++98 and C++17 (-Wall -Wextra -Werror -pedantic)"
 	@echo "  make help-check      every .PHONY target is listed by make help"
+	@echo "  make docs-check      every path and file the README and docs/ name exists; every make target they name is in make help"
 	@echo ""
 	@echo "run and report"
 	@echo "  make run             run SCENE (default $(SCENE)): impacts, final state, operation counts"

@@ -58,7 +58,7 @@
  *     carom_world_add_body(w, &ball, &id);
  *     for (i = 0; i < 300; ++i) carom_world_step(w);
  *     carom_body_get_state(w, id, &s);
- *     printf("ball at %.3g %.3g\n", s.position.x, s.position.y);
+ *     printf("ball at %.3g %.3g\n", (double)s.position.x, (double)s.position.y);
  */
 #ifndef CAROM_H
 #define CAROM_H
