@@ -32,9 +32,15 @@ CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
 
 SCENE ?= tools/scenes/default.scene
 
-# Validation against Box2D 2.4.1 and timing (tools/box2d.mk): box2d,
-# validate, bench-box2d. `make` builds build/carom-box2d when Box2D is here.
+# The Box2D 2.4.1 harness (tools/box2d.mk): `make` builds build/carom-box2d
+# when Box2D is installed.
 include tools/box2d.mk
+# make validate, make validate-check (tools/validation/validation.mk).
+include tools/validation/validation.mk
+# Speed and memory at scale, carom's methods against Box2D 2.4.1 and v3
+# (tools/bench/bench.mk): make bench, bench-quick, bench-build. Speed and
+# memory targets live there, not in unit tests.
+include tools/bench/bench.mk
 # The stress suite (tools/stress/stress.mk): make stress, make stress-check.
 include tools/stress/stress.mk
 # `carom render`'s drawing code (tools/render/render.mk), linked into build/carom.
@@ -48,7 +54,7 @@ include tools/embedded/embedded.mk
 include mk/docs.mk
 HAVE_BOX2D := $(shell pkg-config --exists box2d 2>/dev/null && echo yes)
 
-.PHONY: validate-check check-cross bench all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
+.PHONY: check-cross all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
 .PHONY: help-check examples-check header-example-check
 
 EXAMPLES := $(patsubst examples/%.c,$(BUILD)/examples/%,$(wildcard examples/*.c))
@@ -146,14 +152,6 @@ check-cross:
 check-switches:
 	sh tools/check-switches.sh
 
-# The validation suite's checks (agreement within tolerance), with the
-# report and figure written under build/ so that checking leaves docs/ as
-# it is; `make validate` regenerates docs/validation.md.
-validate-check: $(CLI) $(BOX2D_BIN)
-	@sh tools/ensure-deps.sh plot
-	sh tools/validate.sh --carom $(CLI) --box2d $(BOX2D_BIN) \
-	    --out $(BUILD)/validation.md --figure $(BUILD)/validation-bounce.png
-
 check: deps
 	@sh tools/ensure-deps.sh box2d plot
 	@$(MAKE) --no-print-directory all
@@ -177,12 +175,6 @@ check: deps
 run: $(CLI)
 	@sh tools/run-default.sh $(CLI) $(SCENE)
 
-# Speed and memory targets live here, not in unit tests: the profiler's
-# overhead (tools/bench.sh, docs/cost-model.md), then carom against Box2D
-# (bench-box2d, docs/benchmarks.md).
-bench: $(PROF_LIB) $(LIB)
-	sh tools/bench.sh
-	@$(MAKE) --no-print-directory bench-box2d
 
 clean:
 	rm -rf $(BUILD)
@@ -197,7 +189,7 @@ help:
 	@echo "  make lib             $(LIB) only"
 	@echo "  make cli             $(CLI) only (linked with the profiling build, $(PROF_LIB))"
 	@echo "  make shared          $(SHLIB) (soname $(SONAME), -fPIC objects in $(BUILD)/pic/) and its symlinks"
-	@echo "  make box2d           $(BOX2D_BIN) and $(BENCH_STEP) (Box2D 2.4.1 harness; needs libbox2d-dev, g++)"
+	@echo "  make box2d           $(BOX2D_BIN) (Box2D 2.4.1 harness; needs libbox2d-dev, g++)"
 	@echo "  make embedded        the Cortex-M libraries, firmware and host suite of check-embedded; runs nothing"
 	@echo "  make embedded-host   the embedded scene suite built for this machine (the reference hashes)"
 	@echo "  make fuzz-build      the libFuzzer harnesses only, in $(BUILD)/fuzz/"
@@ -225,9 +217,10 @@ help:
 	@echo ""
 	@echo "run and report"
 	@echo "  make run             run SCENE (default $(SCENE)): impacts, final state, operation counts"
-	@echo "  make validate        carom against Box2D 2.4.1: regenerates docs/validation.md (~30 s)"
-	@echo "  make bench           the profiler's overhead, then bench-box2d (not part of check)"
-	@echo "  make bench-box2d     carom against Box2D, timed: regenerates docs/benchmarks.md (~2 min)"
+	@echo "  make validate        carom against Box2D 2.4.1 and exact answers (453 checks): regenerates docs/validation.md (~15 s)"
+	@echo "  make bench           carom's methods against Box2D 2.4.1 (and v3 with B2V3_DIR=) at 10^2..10^5 bodies: docs/benchmarks.md, docs/bench-*.png (~10 min)"
+	@echo "  make bench-quick     the same at 10^2 and 10^3 bodies, report under $(BUILD)/bench/ (~1 min)"
+	@echo "  make bench-build     $(BUILD)/carom-bench and $(BUILD)/carom-bench-ops only"
 	@echo "  make stress          every stress scene through carom and Box2D: docs/stability.md (~10 min)"
 	@echo "  make stress-scenes   regenerate tools/scenes/stress (python3)"
 	@echo "  make render-images   redraw docs/images/ with carom render (default scene animated; stills; needs gnuplot)"

@@ -371,6 +371,8 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
     b.flags = CR_BODY_ALIVE | CR_BODY_AWAKE;
     if (def->is_sensor)
         b.flags |= CR_BODY_SENSOR;
+    if (in.shape.kind == CAROM_SHAPE_CIRCLE)
+        b.flags |= CR_BODY_CIRCLE;
     if (def->category_bits != 1u || def->mask_bits != 0xffffffffu || def->group_index != 0)
         b.flags |= CR_BODY_FILTERED;
     in.category = def->category_bits;

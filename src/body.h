@@ -17,6 +17,8 @@
                                group): pairs read its info */
 #define CR_BODY_ONCE 16u    /* has a force or torque for the next step
                                only (carom_body_apply_force/torque) */
+#define CR_BODY_CIRCLE 32u  /* its shape is a circle (read in the solver's
+                               hot loops without touching the cold info) */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

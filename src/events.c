@@ -418,7 +418,7 @@ static carom_status cr_regrow(carom_world *w, int i, float t)
 
 static float cr_lever_n(const carom_world *w, int body, cr_v2 r, cr_v2 n)
 {
-    return w->info[body].shape.kind == CAROM_SHAPE_CIRCLE ? 0.0f : cr_vcross(r, n);
+    return (w->bodies[body].flags & CR_BODY_CIRCLE) ? 0.0f : cr_vcross(r, n);
 }
 
 static void cr_row_apply(carom_world *w, const cr_impact_row *r, int k,

@@ -204,7 +204,7 @@ static void cr_apply(cr_body *A, cr_body *B, float la, float lb, cr_v2 dir,
 
 static float cr_normal_lever(const carom_world *w, int body, cr_v2 r, cr_v2 n)
 {
-    return w->info[body].shape.kind == CAROM_SHAPE_CIRCLE ? 0.0f : cr_vcross(r, n);
+    return (w->bodies[body].flags & CR_BODY_CIRCLE) ? 0.0f : cr_vcross(r, n);
 }
 
 void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s)

@@ -24,36 +24,29 @@ static int cr_touch_less(const cr_touch *x, const cr_touch *y)
     return x->a < y->a || (x->a == y->a && xb < yb);
 }
 
-/* Heap sort: in place, no recursion, deterministic. */
-static void cr_touch_sift(cr_touch *t, int i, int n)
+/* Sort by (a, b) in linear time: two counting passes over body slots (by
+ * b, then stably by a), through the pair sort's scratch, free at the end
+ * of the step (it holds max_pairs pairs, far more than as many touches). */
+static void cr_touch_sort(carom_world *w, cr_touch *t, int n)
 {
-    for (;;) {
-        int c = 2 * i + 1, m = i;
-        cr_touch tmp;
-        if (c < n && cr_touch_less(&t[m], &t[c]))
-            m = c;
-        if (c + 1 < n && cr_touch_less(&t[m], &t[c + 1]))
-            m = c + 1;
-        if (m == i)
-            return;
-        tmp = t[i];
-        t[i] = t[m];
-        t[m] = tmp;
-        i = m;
-    }
-}
-
-static void cr_touch_sort(cr_touch *t, int n)
-{
-    int i;
-    for (i = n / 2 - 1; i >= 0; --i)
-        cr_touch_sift(t, i, n);
-    for (i = n - 1; i > 0; --i) {
-        cr_touch tmp = t[0];
-        t[0] = t[i];
-        t[i] = tmp;
-        cr_touch_sift(t, 0, i);
-    }
+    cr_touch *tmp = (cr_touch *)(void *)w->pair_tmp;
+    int *count = w->bp.count, slots = w->slot_count, i;
+    for (i = 0; i <= slots; ++i)
+        count[i] = 0;
+    for (i = 0; i < n; ++i)
+        ++count[(t[i].b & ~CR_TOUCH_SENSOR) + 1];
+    for (i = 0; i < slots; ++i)
+        count[i + 1] += count[i];
+    for (i = 0; i < n; ++i)
+        tmp[count[t[i].b & ~CR_TOUCH_SENSOR]++] = t[i];
+    for (i = 0; i <= slots; ++i)
+        count[i] = 0;
+    for (i = 0; i < n; ++i)
+        ++count[tmp[i].a + 1];
+    for (i = 0; i < slots; ++i)
+        count[i + 1] += count[i];
+    for (i = 0; i < n; ++i)
+        t[count[tmp[i].a]++] = tmp[i];
 }
 
 static void cr_touch_event(carom_world *w, const cr_touch *t, int begin)
@@ -116,7 +109,7 @@ void cr_touch_update(carom_world *w)
         if (cr_still(&w->bodies[t->a]) && cr_still(&w->bodies[t->b & ~CR_TOUCH_SENSOR]))
             w->touch_next[n++] = *t;
     }
-    cr_touch_sort(w->touch_next, n);
+    cr_touch_sort(w, w->touch_next, n);
     /* a pair both found and carried (its bodies fell asleep this step)
      * is there twice */
     for (i = 1, j = 1; i < n; ++i)

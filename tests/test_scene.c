@@ -3,8 +3,9 @@
  * of docs/scene-format.md.
  *
  * Scenes are parsed from in-memory strings with scene_parse() under the name
- * "s.scene"; the file-level cases (missing file, NUL byte) go through
- * scene_load() on temporary files. Every error must return -1, leave nothing
+ * "s.scene"; the file-level cases (missing file, directory, NUL byte,
+ * UTF-16, byte-order mark, CR LF and CR line ends) go through scene_load()
+ * on temporary files, and scene_load_stream() on a pipe. Every error must return -1, leave nothing
  * to free, and produce "s.scene:LINE: problem" with the right 1-based line.
  */
 #include <math.h>
@@ -957,6 +958,125 @@ START_TEST(test_scene_load_rejects_empty_file)
 }
 END_TEST
 
+/* Each line end of the spec example written as `eol`, after an optional
+ * UTF-8 byte-order mark, must load as the example does. */
+static void expect_loads_like_example(const char *bom, const char *eol)
+{
+    char text[1024], path[64], err[256] = "";
+    const char *r;
+    size_t n = 0;
+    scene s;
+    n += (size_t)snprintf(text, sizeof text, "%s", bom);
+    for (r = spec_example; *r; ++r) {
+        if (*r == '\n')
+            n += (size_t)snprintf(text + n, sizeof text - n, "%s", eol);
+        else
+            text[n++] = *r;
+        ck_assert_uint_lt(n, sizeof text - 4);
+    }
+    write_temp(path, sizeof path, text, n);
+    ck_assert_msg(scene_load(path, &s, err, sizeof err) == 0, "%s", err);
+    ck_assert_int_eq(s.body_count, 3);
+    ck_assert_int_eq(s.world.method, CAROM_METHOD_DISCRETE);
+    ck_assert_float_eq(s.bodies[0].def.restitution, 0.8f);
+    ck_assert_float_eq(s.bodies[1].def.restitution, 0.8f);
+    ck_assert_float_eq(s.bodies[2].def.mass, 2.0f);
+    ck_assert_int_eq(s.bodies[0].line, 3);
+    ck_assert_int_eq(s.bodies[2].line, 5);
+    scene_free(&s);
+    unlink(path);
+}
+
+START_TEST(test_scene_load_accepts_crlf_and_cr_line_ends)
+{
+    expect_loads_like_example("", "\r\n");
+    expect_loads_like_example("", "\r");
+}
+END_TEST
+
+START_TEST(test_scene_load_skips_utf8_byte_order_mark)
+{
+    expect_loads_like_example("\xEF\xBB\xBF", "\n");
+    expect_loads_like_example("\xEF\xBB\xBF", "\r\n");
+}
+END_TEST
+
+START_TEST(test_scene_load_error_line_counts_cr_and_crlf_line_ends)
+{
+    /* line 2 ends CR LF, line 3 a lone CR: the error is on line 4 */
+    static const char text[] = "\xEF\xBB\xBF" HDR "# c\r\n\r"
+                               "body circle radius=-1\r\n";
+    char path[64], err[256], prefix[80];
+    scene s;
+    write_temp(path, sizeof path, text, strlen(text));
+    ck_assert_int_eq(scene_load(path, &s, err, sizeof err), -1);
+    snprintf(prefix, sizeof prefix, "%s:4: ", path);
+    ck_assert_msg(strncmp(err, prefix, strlen(prefix)) == 0, "%s", err);
+    ck_assert_ptr_nonnull(strstr(err, "radius"));
+    unlink(path);
+}
+END_TEST
+
+START_TEST(test_scene_parse_counts_lone_cr_as_a_line_end)
+{
+    scene s;
+    parse_ok(HDR "world dt=0.25\rbody circle radius=2\r\rbody circle\r", &s);
+    ck_assert_float_eq(s.world.dt, 0.25f);
+    ck_assert_int_eq(s.body_count, 2);
+    ck_assert_float_eq(s.bodies[0].def.radius, 2.0f);
+    ck_assert_int_eq(s.bodies[0].line, 3);
+    ck_assert_int_eq(s.bodies[1].line, 5);
+    scene_free(&s);
+    expect_error(HDR "\r\r\nbody circle radius=0\n", 4, "radius");
+}
+END_TEST
+
+START_TEST(test_scene_load_rejects_directory)
+{
+    char dir[64], err[256];
+    scene s;
+    snprintf(dir, sizeof dir, "/tmp/carom_test_scene_dir_XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    ck_assert_int_eq(scene_load(dir, &s, err, sizeof err), -1);
+    ck_assert_msg(strncmp(err, dir, strlen(dir)) == 0, "%s", err);
+    ck_assert_msg(strstr(err, "is a directory") != NULL, "%s", err);
+    ck_assert_ptr_null(s.bodies);
+    ck_assert_int_eq(s.body_count, 0);
+    rmdir(dir);
+}
+END_TEST
+
+START_TEST(test_scene_load_rejects_utf16)
+{
+    static const char text[] = "\xFF\xFE" "c\0a\0";
+    char path[64], err[256];
+    scene s;
+    write_temp(path, sizeof path, text, sizeof text - 1);
+    ck_assert_int_eq(scene_load(path, &s, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "UTF-16") != NULL, "%s", err);
+    unlink(path);
+}
+END_TEST
+
+START_TEST(test_scene_load_stream_reads_a_pipe)
+{
+    char err[256] = "";
+    scene s;
+    int fd[2];
+    FILE *f;
+    ck_assert_int_eq(pipe(fd), 0);
+    ck_assert_int_eq(write(fd[1], spec_example, strlen(spec_example)),
+                     (ssize_t)strlen(spec_example));
+    close(fd[1]);
+    f = fdopen(fd[0], "rb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_msg(scene_load_stream(f, "<pipe>", &s, err, sizeof err) == 0, "%s", err);
+    ck_assert_int_eq(s.body_count, 3);
+    scene_free(&s);
+    fclose(f);
+}
+END_TEST
+
 Suite *suite_scene(void)
 {
     Suite *s = suite_create("scene");
@@ -1032,6 +1152,13 @@ Suite *suite_scene(void)
     tcase_add_test(tc, test_scene_load_rejects_missing_file);
     tcase_add_test(tc, test_scene_load_rejects_nul_byte);
     tcase_add_test(tc, test_scene_load_rejects_empty_file);
+    tcase_add_test(tc, test_scene_load_accepts_crlf_and_cr_line_ends);
+    tcase_add_test(tc, test_scene_load_skips_utf8_byte_order_mark);
+    tcase_add_test(tc, test_scene_load_error_line_counts_cr_and_crlf_line_ends);
+    tcase_add_test(tc, test_scene_parse_counts_lone_cr_as_a_line_end);
+    tcase_add_test(tc, test_scene_load_rejects_directory);
+    tcase_add_test(tc, test_scene_load_rejects_utf16);
+    tcase_add_test(tc, test_scene_load_stream_reads_a_pipe);
     suite_add_tcase(s, tc);
     return s;
 }

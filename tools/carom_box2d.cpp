@@ -1,7 +1,7 @@
 /*
  * carom_box2d.cpp -- build/carom-box2d: run carom scene files through
  * Box2D 2.4.1 (Debian's libbox2d-dev), for validation against carom
- * (issue 5, tools/validate.sh, docs/validation.md).
+ * (issue 5, tools/validation/, docs/validation.md).
  *
  * The scene is read by carom's own parser (tools/scene.c), so both engines
  * see the same numbers, and the carom world is built too: that checks the
@@ -298,27 +298,13 @@ bool make_polygon(const carom_body_def &d, b2PolygonShape *shape, char *err,
     return true;
 }
 
-struct options {
-    const char *scene_path = nullptr;
-    const char *trace_path = nullptr;
-    const char *events_path = nullptr;
-    const char *masses_path = nullptr;
-    long steps = -1;
-    double dt = -1.0;
-    long vel_iters = -1;
-    long pos_iters = -1;
-    bool bullets = false;
-    bool timing = false;
-    bool quiet = false;
-};
+/* ---- output and helpers ------------------------------------------------------ */
 
 /* What the listener needs to know of the start of a step. Constant forces
  * have been applied already (GetMass etc. are public; the force is not, so
  * the kick of a body's constant force comes from the scene). */
-const scene *g_scene = nullptr;
-
-void take_snapshot(std::vector<body_snapshot> &snap, const std::vector<b2Body *> &bodies,
-                   b2Vec2 gravity, float dt)
+void take_snapshot(std::vector<body_snapshot> &snap, const scene &sc,
+                   const std::vector<b2Body *> &bodies, b2Vec2 gravity, float dt)
 {
     snap.resize(bodies.size());
     for (size_t i = 0; i < bodies.size(); ++i) {
@@ -331,7 +317,7 @@ void take_snapshot(std::vector<body_snapshot> &snap, const std::vector<b2Body *>
         s.kick_v.SetZero();
         s.kick_w = 0.0f;
         if (b->GetType() == b2_dynamicBody && b->GetMass() > 0.0f) {
-            const carom_body_def &d = g_scene->bodies[i].def;
+            const carom_body_def &d = sc.bodies[i].def;
             const float inv_m = 1.0f / b->GetMass();
             s.kick_v = dt * (b->GetGravityScale() * gravity + inv_m * b2Vec2(d.force.x, d.force.y));
             /* GetInertia is about the origin; Box2D's invI is about the centre */
@@ -382,273 +368,341 @@ double now_ns()
     return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
 }
 
-int cmd_run(int argc, char **argv)
+
+/* ---- the run command -------------------------------------------------------- */
+
+struct options {
+    const char *scene_path = nullptr;
+    const char *trace_path = nullptr;
+    const char *events_path = nullptr;
+    const char *masses_path = nullptr;
+    long steps = -1;
+    double dt = -1.0;
+    long vel_iters = -1;
+    long pos_iters = -1;
+    bool bullets = false;
+    bool timing = false;
+    bool quiet = false;
+};
+
+/* Go on with the run (not an exit status). */
+const int CONTINUE = -1;
+
+/* The value of option `a`, argv[i + 1], into *o. Returns CONTINUE, or an
+ * exit status after a message. */
+int set_option_value(options *o, const char *a, const char *v)
 {
-    options o;
+    if (!std::strcmp(a, "--steps")) {
+        if (!parse_long(v, 0, 1000000000L, &o->steps))
+            return usage_error("--steps: want an integer in [0, 1e9], got '%s'", v);
+    } else if (!std::strcmp(a, "--dt")) {
+        char *end;
+        errno = 0;
+        o->dt = std::strtod(v, &end);
+        if (*v == '\0' || *end != '\0' || errno || !std::isfinite(o->dt) || !(o->dt > 0.0) ||
+            o->dt > 1.0e30)
+            return usage_error("--dt: want a finite number > 0, got '%s'", v);
+    } else if (!std::strcmp(a, "--velocity-iterations")) {
+        if (!parse_long(v, 0, 1000, &o->vel_iters))
+            return usage_error("--velocity-iterations: want an integer in [0, 1000], got '%s'", v);
+    } else if (!std::strcmp(a, "--position-iterations")) {
+        if (!parse_long(v, 0, 1000, &o->pos_iters))
+            return usage_error("--position-iterations: want an integer in [0, 1000], got '%s'", v);
+    } else if (!std::strcmp(a, "--trace")) {
+        o->trace_path = v;
+    } else if (!std::strcmp(a, "--events")) {
+        o->events_path = v;
+    } else {
+        o->masses_path = v;
+    }
+    return CONTINUE;
+}
+
+/* The options of `run`. Returns CONTINUE, or an exit status (0 after
+ * --help). */
+int parse_run_options(int argc, char **argv, options *o)
+{
+    static const char *const with_value[] = {"--steps", "--dt", "--trace", "--events",
+                                             "--masses", "--velocity-iterations",
+                                             "--position-iterations"};
     for (int i = 0; i < argc; ++i) {
         const char *a = argv[i];
+        bool takes_value = false;
+        for (const char *w : with_value)
+            takes_value = takes_value || !std::strcmp(a, w);
         if (!std::strcmp(a, "-h") || !std::strcmp(a, "--help")) {
             std::fputs(usage, stdout);
             return 0;
         } else if (!std::strcmp(a, "--bullets")) {
-            o.bullets = true;
+            o->bullets = true;
         } else if (!std::strcmp(a, "--time")) {
-            o.timing = true;
+            o->timing = true;
         } else if (!std::strcmp(a, "--quiet")) {
-            o.quiet = true;
-        } else if (!std::strcmp(a, "--steps") || !std::strcmp(a, "--dt") ||
-                   !std::strcmp(a, "--trace") || !std::strcmp(a, "--events") ||
-                   !std::strcmp(a, "--masses") ||
-                   !std::strcmp(a, "--velocity-iterations") ||
-                   !std::strcmp(a, "--position-iterations")) {
+            o->quiet = true;
+        } else if (takes_value) {
             if (i + 1 >= argc)
                 return usage_error("%s needs a value", a);
-            const char *v = argv[++i];
-            if (!std::strcmp(a, "--steps")) {
-                if (!parse_long(v, 0, 1000000000L, &o.steps))
-                    return usage_error("--steps: want an integer in [0, 1e9], got '%s'", v);
-            } else if (!std::strcmp(a, "--dt")) {
-                char *end;
-                errno = 0;
-                o.dt = std::strtod(v, &end);
-                if (*v == '\0' || *end != '\0' || errno || !std::isfinite(o.dt) ||
-                    !(o.dt > 0.0) || o.dt > 1.0e30)
-                    return usage_error("--dt: want a finite number > 0, got '%s'", v);
-            } else if (!std::strcmp(a, "--velocity-iterations")) {
-                if (!parse_long(v, 0, 1000, &o.vel_iters))
-                    return usage_error("--velocity-iterations: want an integer in [0, 1000], got '%s'", v);
-            } else if (!std::strcmp(a, "--position-iterations")) {
-                if (!parse_long(v, 0, 1000, &o.pos_iters))
-                    return usage_error("--position-iterations: want an integer in [0, 1000], got '%s'", v);
-            } else if (!std::strcmp(a, "--trace")) {
-                o.trace_path = v;
-            } else if (!std::strcmp(a, "--events")) {
-                o.events_path = v;
-            } else {
-                o.masses_path = v;
-            }
+            int rc = set_option_value(o, a, argv[++i]);
+            if (rc != CONTINUE)
+                return rc;
         } else if (a[0] == '-' && a[1] != '\0') {
             return usage_error("unknown option '%s'", a);
-        } else if (!o.scene_path) {
-            o.scene_path = a;
+        } else if (!o->scene_path) {
+            o->scene_path = a;
         } else {
             return usage_error("more than one scene given ('%s')", a);
         }
     }
-    if (!o.scene_path)
+    if (!o->scene_path)
         return usage_error("%s", "run: missing SCENE");
+    return CONTINUE;
+}
 
+/* What a run owns: released on every way out. */
+struct run_resources {
     scene s;
+    bool have_scene = false;
+    carom_world *cw = nullptr;
+    void *carom_mem = nullptr;
+    FILE *trace = nullptr;
+    FILE *events = nullptr;
+
+    run_resources() { std::memset(&s, 0, sizeof s); }
+    ~run_resources()
+    {
+        if (trace)
+            std::fclose(trace);
+        if (events)
+            std::fclose(events);
+        std::free(carom_mem);
+        if (have_scene)
+            scene_free(&s);
+    }
+    run_resources(const run_resources &) = delete;
+    run_resources &operator=(const run_resources &) = delete;
+};
+
+/* The scene with the command line's overrides, and its carom world (the
+ * same checks as build/carom, and the reference mass properties). Returns
+ * CONTINUE, or EXIT_USAGE after a message. */
+int load_scene(const options &o, run_resources *r)
+{
     char err[512];
-    if (scene_load(o.scene_path, &s, err, sizeof err) != 0) {
+    if (scene_load(o.scene_path, &r->s, err, sizeof err) != 0) {
         std::fprintf(stderr, "carom-box2d: %s\n", err);
         return EXIT_USAGE;
     }
+    r->have_scene = true;
     if (o.steps >= 0)
-        s.steps = o.steps;
+        r->s.steps = o.steps;
     if (o.dt > 0.0)
-        s.world.dt = (float)o.dt;
-    const char *path = o.scene_path;
-    g_scene = &s;
-
-    /* The carom world: the same checks as build/carom, and the reference
-     * mass properties. */
-    carom_world *cw = nullptr;
-    void *cmem = nullptr;
-    if (scene_build_world(&s, &cw, &cmem, err, sizeof err) != 0) {
-        std::fprintf(stderr, "carom-box2d: %s: %s\n", path, err);
-        scene_free(&s);
+        r->s.world.dt = (float)o.dt;
+    if (scene_build_world(&r->s, &r->cw, &r->carom_mem, err, sizeof err) != 0) {
+        std::fprintf(stderr, "carom-box2d: %s: %s\n", o.scene_path, err);
         return EXIT_USAGE;
     }
+    return CONTINUE;
+}
 
-    const float dt = s.world.dt;
-    /* carom's rest speed as resolved for this scene (CAROM_AUTO: from
-     * |gravity| dt) is Box2D's restitution threshold */
-    carom_tolerances tol;
-    carom_world_get_tolerances(cw, &tol);
-    const float rest = tol.rest_speed;
-    b2World world(b2Vec2(s.world.gravity.x, s.world.gravity.y));
-    world.SetAllowSleeping(false);
-    event_listener listener;
-    listener.rest_speed = rest;
-    if (o.events_path)
-        world.SetContactListener(&listener);
-
-    std::vector<b2Body *> bodies;
-    bool any_polygon = false;
+/* The thinnest polygon of the scene, for the note on Box2D's skin. */
+struct polygon_summary {
+    bool any = false;
     double thinnest = INFINITY;
     int thinnest_id = -1;
-    int rc = 0;
+};
+
+/* Body i of the scene in `world` (user data i), or nullptr after a message
+ * if Box2D cannot represent its shape. */
+b2Body *create_body(const options &o, const scene_body &sb, int i, carom_world *cw,
+                    float rest, b2World &world, polygon_summary *polys)
+{
+    const carom_body_def &d = sb.def;
+    const bool dyn = d.type == CAROM_BODY_DYNAMIC;
+    b2BodyDef bd;
+    bd.type = dyn ? b2_dynamicBody : b2_staticBody;
+    bd.position.Set(d.position.x, d.position.y);
+    bd.angle = sb.angle;
+    bd.allowSleep = false;
+    bd.bullet = dyn && o.bullets;
+    bd.userData.pointer = (uintptr_t)i;
+
+    b2CircleShape circle;
+    b2PolygonShape poly;
+    b2FixtureDef fd;
+    double area;
+    if (d.shape == CAROM_SHAPE_CIRCLE) {
+        circle.m_radius = d.radius;
+        fd.shape = &circle;
+        area = M_PI * (double)d.radius * (double)d.radius;
+    } else {
+        char err[512];
+        if (!make_polygon(d, &poly, err, sizeof err)) {
+            std::fprintf(stderr, "carom-box2d: %s:%d: body %d: %s\n", o.scene_path, sb.line, i,
+                         err);
+            return nullptr;
+        }
+        fd.shape = &poly;
+        area = polygon_area(d);
+        polys->any = true;
+        double w = polygon_width(d);
+        if (w < polys->thinnest) {
+            polys->thinnest = w;
+            polys->thinnest_id = i;
+        }
+    }
+    float cmass = 0.0f, cinertia = 0.0f;
+    carom_body_get_mass(cw, i, &cmass, &cinertia);
+    fd.density = dyn ? (float)((double)cmass / area) : 0.0f;
+    fd.friction = d.friction;
+    fd.restitution = d.restitution;
+    fd.restitutionThreshold = rest;
+    b2Body *b = world.CreateBody(&bd);
+    b->CreateFixture(&fd);
+    if (dyn) {
+        /* carom's velocity is the centre of mass's, as is Box2D's linear
+         * velocity: set after the fixture fixed the centre. */
+        b->SetLinearVelocity(b2Vec2(d.velocity.x, d.velocity.y));
+        b->SetAngularVelocity(d.angular_velocity);
+        float bm = b->GetMass();
+        if (std::fabs((double)bm - cmass) > 1e-5 * cmass && !o.quiet)
+            std::fprintf(stderr, "carom-box2d: note: body %d: Box2D mass %.9g, carom %.9g\n", i,
+                         (double)bm, (double)cmass);
+    }
+    return b;
+}
+
+/* Every difference Box2D cannot avoid, on stderr. */
+void print_notes(const options &o, const scene &s, const carom_tolerances &tol,
+                 const polygon_summary &polys)
+{
+    std::fprintf(stderr, "carom-box2d: note: Box2D has one method (contacts found where "
+                 "bodies overlap at the start of a step; continuous collision only %s); "
+                 "the scene's method=%s is not used\n",
+                 o.bullets ? "for bullets and against static bodies" : "against static bodies",
+                 carom_method_name(s.world.method));
+    std::fprintf(stderr, "carom-box2d: note: Box2D's contact slop is b2_linearSlop = "
+                 "%g m (compiled in); the scene's slop=%g m is not used\n",
+                 (double)b2_linearSlop, (double)tol.linear_slop);
+    if (polys.any)
+        std::fprintf(stderr, "carom-box2d: note: every Box2D polygon has a skin of b2_polygonRadius "
+                     "= %g m (it collides as if that much larger all round); thinnest polygon: body "
+                     "%d, %.4g m wide%s\n", (double)b2_polygonRadius, polys.thinnest_id,
+                     polys.thinnest,
+                     polys.thinnest < 2.0 * b2_polygonRadius
+                         ? " (less than twice the skin: Box2D's collision shape is more "
+                           "than twice as thick)"
+                         : "");
+}
+
+/* --masses: carom's and Box2D's mass properties per body. Returns
+ * CONTINUE, EXIT_USAGE (cannot open) or EXIT_SIM (cannot write). */
+int write_masses(const char *path, carom_world *cw, const std::vector<b2Body *> &bodies)
+{
+    FILE *mf = open_out(path);
+    if (!mf)
+        return EXIT_USAGE;
+    std::fputs("body,carom_mass,box2d_mass,carom_inertia,box2d_inertia,cx,cy\n", mf);
+    for (size_t i = 0; i < bodies.size(); ++i) {
+        float cm = 0.0f, ci = 0.0f;
+        carom_body_get_mass(cw, (int)i, &cm, &ci);
+        const b2Body *b = bodies[i];
+        b2Vec2 lc = b->GetLocalCenter();
+        double bm = b->GetMass();
+        /* GetInertia is about the body origin */
+        double bi = (double)b->GetInertia() - bm * ((double)lc.x * lc.x + (double)lc.y * lc.y);
+        std::fprintf(mf, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", i, (double)cm, bm, (double)ci, bi,
+                     (double)lc.x, (double)lc.y);
+    }
+    if (std::fclose(mf) != 0) {
+        std::fprintf(stderr, "carom-box2d: error writing '%s'\n", path);
+        return EXIT_SIM;
+    }
+    return CONTINUE;
+}
+
+/* --trace and --events, with their headers and the trace's step 0.
+ * Returns CONTINUE or EXIT_USAGE. */
+int open_outputs(const options &o, const std::vector<b2Body *> &bodies, run_resources *r)
+{
+    if (o.trace_path && !(r->trace = open_out(o.trace_path)))
+        return EXIT_USAGE;
+    if (o.events_path && !(r->events = open_out(o.events_path)))
+        return EXIT_USAGE;
+    if (r->trace) {
+        std::fputs("step,t,body,x,y,angle,vx,vy,omega\n", r->trace);
+        write_trace(r->trace, bodies, 0, 0.0f);
+    }
+    if (r->events)
+        std::fputs("t,body_a,body_b,nx,ny,impulse,approach_speed\n", r->events);
+    return CONTINUE;
+}
+
+/* The scene's constant forces and torques, for the coming step (Box2D
+ * clears applied forces after every Step). */
+void apply_constant_forces(const scene &s, const std::vector<b2Body *> &bodies)
+{
     for (int i = 0; i < s.body_count; ++i) {
-        const scene_body &sb = s.bodies[i];
-        const carom_body_def &d = sb.def;
-        const bool dyn = d.type == CAROM_BODY_DYNAMIC;
-        b2BodyDef bd;
-        bd.type = dyn ? b2_dynamicBody : b2_staticBody;
-        bd.position.Set(d.position.x, d.position.y);
-        bd.angle = sb.angle;
-        bd.allowSleep = false;
-        bd.bullet = dyn && o.bullets;
-        bd.userData.pointer = (uintptr_t)i;
+        const carom_body_def &d = s.bodies[i].def;
+        if (d.type != CAROM_BODY_DYNAMIC)
+            continue;
+        if (d.force.x != 0.0f || d.force.y != 0.0f)
+            bodies[i]->ApplyForceToCenter(b2Vec2(d.force.x, d.force.y), true);
+        if (d.torque != 0.0f)
+            bodies[i]->ApplyTorque(d.torque, true);
+    }
+}
 
-        b2CircleShape circle;
-        b2PolygonShape poly;
-        b2FixtureDef fd;
-        double area;
-        if (d.shape == CAROM_SHAPE_CIRCLE) {
-            circle.m_radius = d.radius;
-            fd.shape = &circle;
-            area = M_PI * (double)d.radius * (double)d.radius;
-        } else {
-            if (!make_polygon(d, &poly, err, sizeof err)) {
-                std::fprintf(stderr, "carom-box2d: %s:%d: body %d: %s\n", path, sb.line, i, err);
-                rc = EXIT_USAGE;
-                break;
-            }
-            fd.shape = &poly;
-            area = polygon_area(d);
-            any_polygon = true;
-            double w = polygon_width(d);
-            if (w < thinnest) {
-                thinnest = w;
-                thinnest_id = i;
-            }
-        }
-        float cmass = 0.0f, cinertia = 0.0f;
-        carom_body_get_mass(cw, i, &cmass, &cinertia);
-        fd.density = dyn ? (float)((double)cmass / area) : 0.0f;
-        fd.friction = d.friction;
-        fd.restitution = d.restitution;
-        fd.restitutionThreshold = rest;
-        b2Body *b = world.CreateBody(&bd);
-        b->CreateFixture(&fd);
-        if (dyn) {
-            /* carom's velocity is the centre of mass's, as is Box2D's
-             * linear velocity: set after the fixture fixed the centre. */
-            b->SetLinearVelocity(b2Vec2(d.velocity.x, d.velocity.y));
-            b->SetAngularVelocity(d.angular_velocity);
-            float bm = b->GetMass();
-            if (std::fabs((double)bm - cmass) > 1e-5 * cmass && !o.quiet)
-                std::fprintf(stderr, "carom-box2d: note: body %d: Box2D mass %.9g, carom %.9g\n",
-                             i, (double)bm, (double)cmass);
-        }
-        bodies.push_back(b);
-    }
-    if (rc != 0) {
-        std::free(cmem);
-        scene_free(&s);
-        return rc;
-    }
+/* The step's impacts, ordered by body pair, stamped with the step's end. */
+void write_step_events(FILE *f, std::vector<pending_event> &ev, float t)
+{
+    std::stable_sort(ev.begin(), ev.end(), [](const pending_event &x, const pending_event &y) {
+        return x.a != y.a ? x.a < y.a : x.b < y.b;
+    });
+    for (const pending_event &e : ev)
+        std::fprintf(f, "%.9g,%d,%d,%.9g,%.9g,%.9g,%.9g\n", (double)t, e.a, e.b, e.nx, e.ny,
+                     e.impulse, e.approach);
+}
 
-    if (!o.quiet) {
-        std::fprintf(stderr, "carom-box2d: note: Box2D has one method (contacts found where "
-                     "bodies overlap at the start of a step; continuous collision only %s); "
-                     "the scene's method=%s is not used\n",
-                     o.bullets ? "for bullets and against static bodies"
-                               : "against static bodies",
-                     carom_method_name(s.world.method));
-        std::fprintf(stderr, "carom-box2d: note: Box2D's contact slop is b2_linearSlop = "
-                     "%g m (compiled in); the scene's slop=%g m is not used\n",
-                     (double)b2_linearSlop, (double)tol.linear_slop);
-        if (any_polygon)
-            std::fprintf(stderr, "carom-box2d: note: every Box2D polygon has a skin of b2_polygonRadius "
-                         "= %g m (it collides as if that much larger all round); thinnest polygon: body "
-                         "%d, %.4g m wide%s\n", (double)b2_polygonRadius, thinnest_id, thinnest,
-                         thinnest < 2.0 * b2_polygonRadius
-                             ? " (less than twice the skin: Box2D's collision shape is more "
-                               "than twice as thick)"
-                             : "");
-    }
+bool all_finite(const std::vector<b2Body *> &bodies)
+{
+    bool ok = true;
+    for (const b2Body *b : bodies)
+        ok = ok && finite_state(b);
+    return ok;
+}
 
-    if (o.masses_path) {
-        FILE *mf = open_out(o.masses_path);
-        if (!mf) {
-            std::free(cmem);
-            scene_free(&s);
-            return EXIT_USAGE;
-        }
-        std::fputs("body,carom_mass,box2d_mass,carom_inertia,box2d_inertia,cx,cy\n", mf);
-        for (size_t i = 0; i < bodies.size(); ++i) {
-            float cm = 0.0f, ci = 0.0f;
-            carom_body_get_mass(cw, (int)i, &cm, &ci);
-            const b2Body *b = bodies[i];
-            b2Vec2 lc = b->GetLocalCenter();
-            double bm = b->GetMass();
-            /* GetInertia is about the body origin */
-            double bi = (double)b->GetInertia() - bm * ((double)lc.x * lc.x + (double)lc.y * lc.y);
-            std::fprintf(mf, "%zu,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", i, (double)cm, bm,
-                         (double)ci, bi, (double)lc.x, (double)lc.y);
-        }
-        if (std::fclose(mf) != 0) {
-            std::fprintf(stderr, "carom-box2d: error writing '%s'\n", o.masses_path);
-            std::free(cmem);
-            scene_free(&s);
-            return EXIT_SIM;
-        }
-    }
-    std::free(cmem);
-    cmem = nullptr;
-
-    FILE *trace = nullptr, *events = nullptr;
-    if (o.trace_path && !(trace = open_out(o.trace_path))) {
-        scene_free(&s);
-        return EXIT_USAGE;
-    }
-    if (o.events_path && !(events = open_out(o.events_path))) {
-        if (trace)
-            std::fclose(trace);
-        scene_free(&s);
-        return EXIT_USAGE;
-    }
-    if (trace) {
-        std::fputs("step,t,body,x,y,angle,vx,vy,omega\n", trace);
-        write_trace(trace, bodies, 0, 0.0f);
-    }
-    if (events)
-        std::fputs("t,body_a,body_b,nx,ny,impulse,approach_speed\n", events);
-
+/* Step the world s.steps times, writing the trace and events as it goes.
+ * Returns 0, or EXIT_SIM after a message if Box2D's state stops being
+ * finite. */
+int simulate(const options &o, const scene &s, b2World &world, event_listener &listener,
+             const std::vector<b2Body *> &bodies, FILE *trace, FILE *events)
+{
     /* Box2D's own recommended counts unless given: the scene's substeps
      * are carom's solver, not Box2D's */
     const int vel_iters = o.vel_iters >= 0 ? (int)o.vel_iters : 8;
     const int pos_iters = o.pos_iters >= 0 ? (int)o.pos_iters : 3;
+    const float dt = s.world.dt;
     double spent = 0.0;
+    int rc = 0;
     long k;
     for (k = 0; k < s.steps; ++k) {
         double t0 = o.timing ? now_ns() : 0.0;
-        for (int i = 0; i < s.body_count; ++i) {
-            const carom_body_def &d = s.bodies[i].def;
-            if (d.type != CAROM_BODY_DYNAMIC)
-                continue;
-            if (d.force.x != 0.0f || d.force.y != 0.0f)
-                bodies[i]->ApplyForceToCenter(b2Vec2(d.force.x, d.force.y), true);
-            if (d.torque != 0.0f)
-                bodies[i]->ApplyTorque(d.torque, true);
-        }
+        apply_constant_forces(s, bodies);
         listener.pending.clear();
         if (events)
-            take_snapshot(listener.snap, bodies, world.GetGravity(), dt);
+            take_snapshot(listener.snap, s, bodies, world.GetGravity(), dt);
         world.Step(dt, vel_iters, pos_iters);
         if (o.timing)
             spent += now_ns() - t0;
         /* carom_world_time: steps times dt, in float */
         const float t = (float)(k + 1) * dt;
-        if (events) {
-            std::vector<pending_event> &ev = listener.pending;
-            std::stable_sort(ev.begin(), ev.end(), [](const pending_event &x, const pending_event &y) {
-                return x.a != y.a ? x.a < y.a : x.b < y.b;
-            });
-            for (const pending_event &e : ev)
-                std::fprintf(events, "%.9g,%d,%d,%.9g,%.9g,%.9g,%.9g\n", (double)t, e.a, e.b,
-                             e.nx, e.ny, e.impulse, e.approach);
-        }
+        if (events)
+            write_step_events(events, listener.pending, t);
         if (trace)
             write_trace(trace, bodies, k + 1, t);
-        bool ok = true;
-        for (const b2Body *b : bodies)
-            ok = ok && finite_state(b);
-        if (!ok) {
+        if (!all_finite(bodies)) {
             std::fprintf(stderr, "carom-box2d: %s: step %ld (t = %.9g s): Box2D produced a "
-                         "non-finite state\n", path, k + 1, (double)t);
+                         "non-finite state\n", o.scene_path, k + 1, (double)t);
             rc = EXIT_SIM;
             ++k;
             break;
@@ -657,25 +711,75 @@ int cmd_run(int argc, char **argv)
     if (o.timing)
         std::fprintf(stderr, "carom-box2d: time: %ld steps, %.1f ns/step\n", k,
                      k > 0 ? spent / (double)k : 0.0);
-    if (rc == 0) {
-        std::puts("body,x,y,angle,vx,vy,omega");
-        for (size_t i = 0; i < bodies.size(); ++i)
-            write_state(stdout, bodies[i], (int)i, "");
-        if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-            std::fprintf(stderr, "carom-box2d: error writing the final state\n");
-            rc = EXIT_SIM;
-        }
-    }
-    if (trace && std::fclose(trace) != 0 && rc == 0) {
-        std::fprintf(stderr, "carom-box2d: error writing '%s'\n", o.trace_path);
-        rc = EXIT_SIM;
-    }
-    if (events && std::fclose(events) != 0 && rc == 0) {
-        std::fprintf(stderr, "carom-box2d: error writing '%s'\n", o.events_path);
-        rc = EXIT_SIM;
-    }
-    scene_free(&s);
     return rc;
+}
+
+/* The final state on stdout. Returns 0 or EXIT_SIM. */
+int write_final_state(const std::vector<b2Body *> &bodies)
+{
+    std::puts("body,x,y,angle,vx,vy,omega");
+    for (size_t i = 0; i < bodies.size(); ++i)
+        write_state(stdout, bodies[i], (int)i, "");
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+        std::fprintf(stderr, "carom-box2d: error writing the final state\n");
+        return EXIT_SIM;
+    }
+    return 0;
+}
+
+/* Close an output file (*f becomes null); a write error is EXIT_SIM unless
+ * the run has failed already. */
+int close_output(FILE **f, const char *path, int rc)
+{
+    if (*f && std::fclose(*f) != 0 && rc == 0) {
+        std::fprintf(stderr, "carom-box2d: error writing '%s'\n", path);
+        rc = EXIT_SIM;
+    }
+    *f = nullptr;
+    return rc;
+}
+
+int cmd_run(int argc, char **argv)
+{
+    options o;
+    int rc = parse_run_options(argc, argv, &o);
+    if (rc != CONTINUE)
+        return rc;
+    run_resources r;
+    if ((rc = load_scene(o, &r)) != CONTINUE)
+        return rc;
+
+    /* carom's rest speed as resolved for this scene (CAROM_AUTO: from
+     * |gravity| dt) is Box2D's restitution threshold */
+    carom_tolerances tol;
+    carom_world_get_tolerances(r.cw, &tol);
+    b2World world(b2Vec2(r.s.world.gravity.x, r.s.world.gravity.y));
+    world.SetAllowSleeping(false);
+    event_listener listener;
+    listener.rest_speed = tol.rest_speed;
+    if (o.events_path)
+        world.SetContactListener(&listener);
+
+    std::vector<b2Body *> bodies;
+    polygon_summary polys;
+    for (int i = 0; i < r.s.body_count; ++i) {
+        b2Body *b = create_body(o, r.s.bodies[i], i, r.cw, tol.rest_speed, world, &polys);
+        if (!b)
+            return EXIT_USAGE;
+        bodies.push_back(b);
+    }
+    if (!o.quiet)
+        print_notes(o, r.s, tol, polys);
+    if (o.masses_path && (rc = write_masses(o.masses_path, r.cw, bodies)) != CONTINUE)
+        return rc;
+    if ((rc = open_outputs(o, bodies, &r)) != CONTINUE)
+        return rc;
+
+    rc = simulate(o, r.s, world, listener, bodies, r.trace, r.events);
+    if (rc == 0)
+        rc = write_final_state(bodies);
+    rc = close_output(&r.trace, o.trace_path, rc);
+    return close_output(&r.events, o.events_path, rc);
 }
 
 } // namespace

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #define SCENE_MAX_LINE 4096
 #define SCENE_DEFAULT_STEPS 600L
@@ -399,8 +400,8 @@ int scene_parse(const char *name, const char *text, scene *s, char *err,
     p.errlen = errlen;
 
     while (*cur) {
-        const char *nl = strchr(cur, '\n');
-        size_t len = nl ? (size_t)(nl - cur) : strlen(cur);
+        /* a line ends at LF, CR LF or a lone CR (old Mac files) */
+        size_t len = strcspn(cur, "\r\n");
         char *hash, *start, *end, *word, *rest;
         ++p.line;
         if (len >= sizeof line) {
@@ -409,7 +410,11 @@ int scene_parse(const char *name, const char *text, scene *s, char *err,
         }
         memcpy(line, cur, len);
         line[len] = '\0';
-        cur = nl ? nl + 1 : cur + len;
+        cur += len;
+        if (cur[0] == '\r' && cur[1] == '\n')
+            cur += 2;
+        else if (*cur != '\0')
+            ++cur;
 
         hash = strchr(line, '#');
         if (hash)
@@ -473,52 +478,97 @@ error:
     return -1;
 }
 
-int scene_load(const char *path, scene *s, char *err, size_t errlen)
+/* Read all of f (a file, a pipe or a terminal: no seeking) into a fresh
+ * NUL-terminated buffer; *len gets its length. NULL with a message in err
+ * on a read error, past SCENE_MAX_BYTES or out of memory. */
+static char *read_all(FILE *f, const char *name, size_t *len, char *err,
+                      size_t errlen)
 {
-    FILE *f = fopen(path, "rb");
+    size_t cap = 65536, n = 0;
+    char *text = (char *)malloc(cap + 1);
+    while (text) {
+        size_t got = fread(text + n, 1, cap - n, f);
+        n += got;
+        if (n > (size_t)SCENE_MAX_BYTES) {
+            snprintf(err, errlen, "%s: larger than %ld bytes", name, SCENE_MAX_BYTES);
+            free(text);
+            return NULL;
+        }
+        if (got == 0)
+            break;
+        if (n == cap) {
+            char *bigger = (char *)realloc(text, 2 * cap + 1);
+            if (!bigger)
+                break;
+            text = bigger;
+            cap *= 2;
+        }
+    }
+    if (!text || n == cap) {
+        snprintf(err, errlen, "%s: out of memory", name);
+        free(text);
+        return NULL;
+    }
+    if (ferror(f)) {
+        snprintf(err, errlen, "%s: read error: %s", name, strerror(errno));
+        free(text);
+        return NULL;
+    }
+    text[n] = '\0';
+    *len = n;
+    return text;
+}
+
+int scene_load_stream(FILE *f, const char *name, scene *s, char *err,
+                      size_t errlen)
+{
+    size_t len;
+    const unsigned char *u;
     char *text;
-    long size;
-    size_t got;
     int rc;
     memset(s, 0, sizeof *s);
+    text = read_all(f, name, &len, err, errlen);
+    if (!text)
+        return -1;
+    u = (const unsigned char *)text;
+    if (len >= 2 && ((u[0] == 0xFF && u[1] == 0xFE) || (u[0] == 0xFE && u[1] == 0xFF))) {
+        snprintf(err, errlen, "%s: UTF-16 text; save the scene as UTF-8 or ASCII", name);
+        free(text);
+        return -1;
+    }
+    if (strlen(text) != len) {
+        snprintf(err, errlen, "%s: contains a NUL byte (not a text file?)", name);
+        free(text);
+        return -1;
+    }
+    /* a UTF-8 byte-order mark is how some editors start a file, not part of
+     * the format; line ends (LF, CR LF, CR) are scene_parse's */
+    rc = scene_parse(name, len >= 3 && u[0] == 0xEF && u[1] == 0xBB && u[2] == 0xBF
+                               ? text + 3 : text,
+                     s, err, errlen);
+    free(text);
+    return rc;
+}
+
+int scene_load(const char *path, scene *s, char *err, size_t errlen)
+{
+    struct stat st;
+    FILE *f;
+    int rc;
+    memset(s, 0, sizeof *s);
+    f = fopen(path, "rb");
     if (!f) {
         snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return -1;
     }
-    if (fseek(f, 0, SEEK_END) != 0 || (size = ftell(f)) < 0 ||
-        fseek(f, 0, SEEK_SET) != 0) {
-        snprintf(err, errlen, "%s: cannot read (not a regular file?)", path);
+    /* fopen opens a directory for reading on POSIX; say what it is */
+    if (fstat(fileno(f), &st) == 0 && S_ISDIR(st.st_mode)) {
+        snprintf(err, errlen, "%s: is a directory, not a scene file", path);
         fclose(f);
         return -1;
     }
-    if (size > SCENE_MAX_BYTES) {
-        snprintf(err, errlen, "%s: not a regular file, or larger than %ld bytes",
-                 path, SCENE_MAX_BYTES);
-        fclose(f);
-        return -1;
-    }
-    text = (char *)malloc((size_t)size + 1);
-    if (!text) {
-        snprintf(err, errlen, "%s: out of memory", path);
-        fclose(f);
-        return -1;
-    }
-    got = fread(text, 1, (size_t)size, f);
-    if (ferror(f)) {
-        snprintf(err, errlen, "%s: read error (a directory?)", path);
-        fclose(f);
-        free(text);
-        return -1;
-    }
+    rc = scene_load_stream(f, path, s, err, errlen);
     fclose(f);
-    text[got] = '\0';
-    if (strlen(text) != got) {
-        snprintf(err, errlen, "%s: contains a NUL byte (not a text file?)", path);
-        free(text);
-        return -1;
-    }
-    rc = scene_parse(path, text, s, err, errlen);
-    free(text);
     return rc;
 }
 

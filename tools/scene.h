@@ -8,6 +8,7 @@
 #define CAROM_SCENE_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "carom.h"
 
@@ -30,11 +31,20 @@ typedef struct scene {
     int body_capacity;
 } scene;
 
-/* Parse `path` into *s. Returns 0 on success; otherwise fills err with
- * "FILE:LINE: problem" and returns -1 (nothing to free). */
+/* Parse the file `path` into *s. Returns 0 on success; otherwise fills err
+ * with "FILE:LINE: problem" (or "FILE: problem": a directory, not
+ * readable, UTF-16, a NUL byte, larger than 64 MiB) and returns -1
+ * (nothing to free). A UTF-8 byte-order mark is skipped; lines may end
+ * with LF, CR LF or CR (line numbers count any of them). */
 int scene_load(const char *path, scene *s, char *err, size_t errlen);
 
-/* Parse from a string (for tests); `name` is used in messages. */
+/* The same for an open stream (stdin, a pipe), read to its end; `name` is
+ * used in messages. The stream is not closed. */
+int scene_load_stream(FILE *f, const char *name, scene *s, char *err,
+                      size_t errlen);
+
+/* Parse from a string; `name` is used in messages. Lines end with LF,
+ * CR LF or CR. */
 int scene_parse(const char *name, const char *text, scene *s, char *err,
                 size_t errlen);
 
