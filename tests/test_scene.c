@@ -318,6 +318,46 @@ START_TEST(test_scene_static_and_dynamic_flags)
 }
 END_TEST
 
+START_TEST(test_scene_kinematic_sensor_and_filter_keys)
+{
+    scene s;
+    parse_ok(HDR "body box kinematic half-extents=1,0.2 velocity=2,0\n"
+                 "body circle sensor static\n"
+                 "body circle category=0x4 mask=5 group=-3\n",
+             &s);
+    ck_assert_int_eq(s.bodies[0].def.type, CAROM_BODY_KINEMATIC);
+    ck_assert(s.bodies[0].def.velocity.x == 2.0f);
+    ck_assert_int_eq(s.bodies[1].def.is_sensor, 1);
+    ck_assert_int_eq(s.bodies[1].def.type, CAROM_BODY_STATIC);
+    ck_assert_uint_eq(s.bodies[2].def.category_bits, 4u);
+    ck_assert_uint_eq(s.bodies[2].def.mask_bits, 5u);
+    ck_assert_int_eq(s.bodies[2].def.group_index, -3);
+    ck_assert_int_eq(s.bodies[0].def.is_sensor, 0);
+    ck_assert_uint_eq(s.bodies[0].def.mask_bits, 0xffffffffu);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(test_scene_bad_filter_values_are_named)
+{
+    scene s;
+    char err[256];
+    ck_assert_int_eq(scene_parse("f.scene", HDR "body circle mask=-1\n", &s, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "f.scene:2") && strstr(err, "mask"), "%s", err);
+    ck_assert_int_eq(scene_parse("f.scene", HDR "body circle category=0x100000000\n", &s, err,
+                                 sizeof err),
+                     -1);
+    ck_assert_msg(strstr(err, "category"), "%s", err);
+    ck_assert_int_eq(scene_parse("f.scene", HDR "body circle group=40000\n", &s, err, sizeof err),
+                     -1);
+    ck_assert_msg(strstr(err, "group"), "%s", err);
+    /* a value beyond the limits names the limit */
+    ck_assert_int_eq(scene_parse("f.scene", HDR "body circle velocity=1e9,0\n", &s, err, sizeof err),
+                     -1);
+    ck_assert_msg(strstr(err, "CAROM_LIMIT_MAX_SPEED"), "%s", err);
+}
+END_TEST
+
 START_TEST(test_scene_optional_world_keys)
 {
     scene s;
@@ -1094,6 +1134,8 @@ Suite *suite_scene(void)
     tcase_add_test(tc, test_scene_bodies_numbered_in_file_order);
     tcase_add_test(tc, test_scene_many_bodies_grow_the_array);
     tcase_add_test(tc, test_scene_static_and_dynamic_flags);
+    tcase_add_test(tc, test_scene_kinematic_sensor_and_filter_keys);
+    tcase_add_test(tc, test_scene_bad_filter_values_are_named);
     tcase_add_test(tc, test_scene_optional_world_keys);
     tcase_add_test(tc, test_scene_force_and_torque_keys);
     tcase_add_test(tc, test_scene_negative_angle_gives_rotation);

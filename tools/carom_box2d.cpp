@@ -519,7 +519,19 @@ b2Body *create_body(const options &o, const scene_body &sb, int i, carom_world *
     const carom_body_def &d = sb.def;
     const bool dyn = d.type == CAROM_BODY_DYNAMIC;
     b2BodyDef bd;
-    bd.type = dyn ? b2_dynamicBody : b2_staticBody;
+    if (d.category_bits > 0xffffu || (d.mask_bits > 0xffffu && d.mask_bits != 0xffffffffu)) {
+        std::fprintf(stderr,
+                     "carom-box2d: %s:%d: body %d: unsupported: Box2D 2.4.1 has 16 filter "
+                     "bits (category 0x%x, mask 0x%x)\n",
+                     o.scene_path, sb.line, i, (unsigned)d.category_bits, (unsigned)d.mask_bits);
+        return nullptr;
+    }
+    bd.type = dyn ? b2_dynamicBody
+                  : (d.type == CAROM_BODY_KINEMATIC ? b2_kinematicBody : b2_staticBody);
+    if (d.type == CAROM_BODY_KINEMATIC) {
+        bd.linearVelocity.Set(d.velocity.x, d.velocity.y);
+        bd.angularVelocity = d.angular_velocity;
+    }
     bd.position.Set(d.position.x, d.position.y);
     bd.angle = sb.angle;
     bd.allowSleep = false;
@@ -556,6 +568,11 @@ b2Body *create_body(const options &o, const scene_body &sb, int i, carom_world *
     fd.friction = d.friction;
     fd.restitution = d.restitution;
     fd.restitutionThreshold = rest;
+    /* filter and sensors map one to one (16 bits in Box2D 2.4.1) */
+    fd.isSensor = d.is_sensor != 0;
+    fd.filter.categoryBits = (uint16_t)d.category_bits;
+    fd.filter.maskBits = (uint16_t)(d.mask_bits & 0xffffu);
+    fd.filter.groupIndex = (int16_t)d.group_index;
     b2Body *b = world.CreateBody(&bd);
     b->CreateFixture(&fd);
     if (dyn) {

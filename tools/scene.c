@@ -249,8 +249,52 @@ enum {
     K_RADIUS = 1u << 0, K_HALF = 1u << 1, K_VERTS = 1u << 2, K_POS = 1u << 3,
     K_ANGLE = 1u << 4, K_VEL = 1u << 5, K_OMEGA = 1u << 6, K_DENSITY = 1u << 7,
     K_MASS = 1u << 8, K_REST = 1u << 9, K_FRIC = 1u << 10, K_FORCE = 1u << 11,
-    K_TORQUE = 1u << 12
+    K_TORQUE = 1u << 12, K_CAT = 1u << 13, K_MASK = 1u << 14, K_GROUP = 1u << 15
 };
+
+/* A 32-bit unsigned value, decimal or 0x hex. */
+static int parse_bits(parser *p, const char *key, const char *s, uint32_t *out)
+{
+    char *end;
+    unsigned long v;
+    errno = 0;
+    v = strtoul(s, &end, 0);
+    if (*s == '\0' || *s == '-' || *end != '\0' || errno == ERANGE || v > 0xffffffffUL)
+        return fail(p, "%s: want a 32-bit unsigned number (decimal or 0x hex), got '%s'", key,
+                    s);
+    *out = (uint32_t)v;
+    return 0;
+}
+
+/* Which value of a body definition is outside carom's documented range
+ * (carom_config.h CAROM_LIMIT_*), for a message naming it. */
+static const char *range_hint(const carom_body_def *d, char *buf, size_t len)
+{
+    float m = d->mass > 0.0f ? d->mass : 0.0f;
+    if (fabsf(d->position.x) > CAROM_LIMIT_MAX_LENGTH ||
+        fabsf(d->position.y) > CAROM_LIMIT_MAX_LENGTH)
+        snprintf(buf, len, "position beyond %g m (CAROM_LIMIT_MAX_LENGTH)",
+                 (double)CAROM_LIMIT_MAX_LENGTH);
+    else if (fabsf(d->velocity.x) > CAROM_LIMIT_MAX_SPEED ||
+             fabsf(d->velocity.y) > CAROM_LIMIT_MAX_SPEED)
+        snprintf(buf, len, "velocity beyond %g m/s (CAROM_LIMIT_MAX_SPEED)",
+                 (double)CAROM_LIMIT_MAX_SPEED);
+    else if (d->angular_velocity != 0.0f)
+        snprintf(buf, len,
+                 "angular-velocity times the body's extent beyond %g m/s "
+                 "(CAROM_LIMIT_MAX_SPEED), or force/torque over mass beyond %g m/s^2 "
+                 "(CAROM_LIMIT_MAX_ACCEL)",
+                 (double)CAROM_LIMIT_MAX_SPEED, (double)CAROM_LIMIT_MAX_ACCEL);
+    else if (d->force.x != 0.0f || d->force.y != 0.0f || d->torque != 0.0f)
+        snprintf(buf, len,
+                 "force over mass (or torque over inertia, times the extent) beyond %g m/s^2 "
+                 "(CAROM_LIMIT_MAX_ACCEL)%s",
+                 (double)CAROM_LIMIT_MAX_ACCEL, m > 0.0f ? "" : "; the mass is from density");
+    else
+        snprintf(buf, len, "a size beyond [%g, %g] m (CAROM_LIMIT_MIN_SIZE, _MAX_LENGTH)",
+                 (double)CAROM_LIMIT_MIN_SIZE, (double)CAROM_LIMIT_MAX_LENGTH);
+    return buf;
+}
 
 static int parse_body(parser *p, char *rest, scene *s)
 {
@@ -289,6 +333,14 @@ static int parse_body(parser *p, char *rest, scene *s)
         }
         if (strcmp(tok, "dynamic") == 0) {
             d->type = CAROM_BODY_DYNAMIC;
+            continue;
+        }
+        if (strcmp(tok, "kinematic") == 0) {
+            d->type = CAROM_BODY_KINEMATIC;
+            continue;
+        }
+        if (strcmp(tok, "sensor") == 0) {
+            d->is_sensor = 1;
             continue;
         }
         if (split_kv(p, tok, &key, &val))
@@ -353,6 +405,19 @@ static int parse_body(parser *p, char *rest, scene *s)
         } else if (strcmp(key, "torque") == 0) {
             if (seen_before(p, &seen, K_TORQUE, key) || parse_float(p, key, val, &d->torque))
                 return -1;
+        } else if (strcmp(key, "category") == 0) {
+            if (seen_before(p, &seen, K_CAT, key) || parse_bits(p, key, val, &d->category_bits))
+                return -1;
+        } else if (strcmp(key, "mask") == 0) {
+            if (seen_before(p, &seen, K_MASK, key) || parse_bits(p, key, val, &d->mask_bits))
+                return -1;
+        } else if (strcmp(key, "group") == 0) {
+            long g;
+            if (seen_before(p, &seen, K_GROUP, key) || parse_long(p, key, val, &g))
+                return -1;
+            if (g < -32768 || g > 32767)
+                return fail(p, "group: must be in [-32768, 32767], got %s", val);
+            d->group_index = (int)g;
         } else {
             return fail(p, "body: unknown key '%s'", key);
         }
@@ -368,6 +433,15 @@ static int parse_body(parser *p, char *rest, scene *s)
         return fail(p, "polygon: missing vertices=");
     d->rotation = carom_rot_from_angle(sb.angle);
     st = carom_body_def_validate(d);
+    if (st == CAROM_ERR_OUT_OF_RANGE) {
+        char hint[200];
+        return fail(p, "body %d: %s: %s", s->body_count, carom_status_string(st),
+                    range_hint(d, hint, sizeof hint));
+    }
+    if (st == CAROM_ERR_BAD_MASS)
+        return fail(p, "body %d: %s: mass and inertia must be in [%g, %g] (kg, kg m^2)",
+                    s->body_count, carom_status_string(st), (double)CAROM_LIMIT_MIN_MASS,
+                    (double)CAROM_LIMIT_MAX_MASS);
     if (st != CAROM_OK)
         return fail(p, "body %d: %s", s->body_count, carom_status_string(st));
 
