@@ -46,9 +46,17 @@
 
 #if CAROM_ENABLE_EVENTS
 
-/* Convergence of a simultaneous impact solve: the largest impulse change of
- * a sweep, relative to the largest impulse. */
+/* Convergence of a simultaneous impact solve: a sweep changes no point's
+ * velocity by more than CR_ISLAND_TOL of the fastest approach of the
+ * island, or CR_ISLAND_REST_TOL of its rest speed (below which speeds are
+ * resting contact anyway): float rounding in zero gravity, a small
+ * fraction of what any contact resolves under gravity. */
 #define CR_ISLAND_TOL 1.0e-6f
+#define CR_ISLAND_REST_TOL 1.0e-5f
+
+/* Sweeps that keep an island's touching contacts from closing in for the
+ * rest of the substep (cr_hold_contacts). */
+#define CR_HOLD_SWEEPS 8
 
 /* Approach below this fraction of the bodies' speeds is rounding. */
 #define CR_APPROACH_REL_TOL 1.0e-4f
@@ -290,10 +298,8 @@ static void cr_pair_search(carom_world *w, int k, float t0)
             cr_contact_remake(w, c);
         }
         c->flags |= CR_CONTACT_SOLVE;
-        if (w->bodies[p->a].type != CAROM_BODY_STATIC)
-            w->sbody[p->a].active = 1;
-        if (w->bodies[p->b].type != CAROM_BODY_STATIC)
-            w->sbody[p->b].active = 1;
+        cr_solver_activate(w, p->a);
+        cr_solver_activate(w, p->b);
         w->reorder = 1;
         p->solved = 1;
     }
@@ -448,7 +454,8 @@ static float cr_row_vn(const carom_world *w, const cr_impact_row *r, int k,
 }
 
 /* One sweep over a row: friction, then the normal impulses (a 2-point row
- * as a block when well conditioned). Returns the largest impulse change. */
+ * as a block when well conditioned). Returns the largest velocity change
+ * it made at one of its points (impulse change over effective mass). */
 static float cr_row_sweep(carom_world *w, cr_impact_row *r)
 {
     const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
@@ -473,7 +480,7 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
         cr_row_apply(w, r, 0, t, cr_vcross(ra, t), cr_vcross(rb, t), d);
         r->pt[0] = cr_mul(cr_gt(pn, 0.0f) ? cr_div(r->pn[0], pn) : 0.5f, pt);
         r->pt[1] = cr_sub(pt, r->pt[0]);
-        change = cr_max(change, cr_abs(d));
+        change = cr_max(change, cr_div(cr_abs(d), mass_t));
     } else if (cr_gt(r->friction, 0.0f))
         for (k = 0; k < r->count; ++k) {
             float vt = cr_row_vn(w, r, k, t);
@@ -483,34 +490,23 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
             float d = cr_sub(pt, r->pt[k]);
             r->pt[k] = pt;
             cr_row_apply(w, r, k, t, cr_vcross(r->ra[k], t), cr_vcross(r->rb[k], t), d);
-            change = cr_max(change, cr_abs(d));
+            change = cr_max(change, cr_div(cr_abs(d), r->mass_t[k]));
         }
 #endif
-    if (r->count == 2) {
-        float l1a = cr_lever_n(w, r->a, r->ra[0], r->n), l1b = cr_lever_n(w, r->b, r->rb[0], r->n);
-        float l2a = cr_lever_n(w, r->a, r->ra[1], r->n), l2b = cr_lever_n(w, r->b, r->rb[1], r->n);
-        float lin = cr_add(A->inv_m, B->inv_m);
-        float k11 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(l1a, l1a)),
-                                       cr_mul(B->inv_I, cr_mul(l1b, l1b))));
-        float k22 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(l2a, l2a)),
-                                       cr_mul(B->inv_I, cr_mul(l2b, l2b))));
-        float k12 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(l1a, l2a)),
-                                       cr_mul(B->inv_I, cr_mul(l1b, l2b))));
-        float det = cr_sub(cr_mul(k11, k22), cr_mul(k12, k12));
-        if (cr_gt(det, cr_mul(CR_BLOCK_MIN_DET, cr_mul(k11, k22)))) {
-            float a1 = r->pn[0], a2 = r->pn[1], x1, x2;
-            float b1 = cr_sub(cr_sub(cr_row_vn(w, r, 0, r->n), r->target[0]),
-                              cr_add(cr_mul(k11, a1), cr_mul(k12, a2)));
-            float b2 = cr_sub(cr_sub(cr_row_vn(w, r, 1, r->n), r->target[1]),
-                              cr_add(cr_mul(k12, a1), cr_mul(k22, a2)));
-            if (cr_lcp2(k11, k12, k22, b1, b2, &x1, &x2)) {
-                r->pn[0] = x1;
-                r->pn[1] = x2;
-                cr_row_apply(w, r, 0, r->n, l1a, l1b, cr_sub(x1, a1));
-                cr_row_apply(w, r, 1, r->n, l2a, l2b, cr_sub(x2, a2));
-                return cr_max(change, cr_max(cr_abs(cr_sub(x1, a1)),
-                                             cr_abs(cr_sub(x2, a2))));
-            }
+    if (r->block) {
+        float a1 = r->pn[0], a2 = r->pn[1], x1, x2;
+        float b1 = cr_sub(cr_sub(cr_row_vn(w, r, 0, r->n), r->target[0]),
+                          cr_add(cr_mul(r->k11, a1), cr_mul(r->k12, a2)));
+        float b2 = cr_sub(cr_sub(cr_row_vn(w, r, 1, r->n), r->target[1]),
+                          cr_add(cr_mul(r->k12, a1), cr_mul(r->k22, a2)));
+        if (cr_lcp2(r->k11, r->k12, r->k22, b1, b2, &x1, &x2)) {
+            float d1 = cr_sub(x1, a1), d2 = cr_sub(x2, a2);
+            r->pn[0] = x1;
+            r->pn[1] = x2;
+            cr_row_apply(w, r, 0, r->n, r->la[0], r->lb[0], d1);
+            cr_row_apply(w, r, 1, r->n, r->la[1], r->lb[1], d2);
+            return cr_max(change, cr_max(cr_mul(cr_abs(d1), r->k11),
+                                         cr_mul(cr_abs(d2), r->k22)));
         }
     }
     for (k = 0; k < r->count; ++k) {
@@ -519,9 +515,8 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
                           0.0f);
         float d = cr_sub(pn, r->pn[k]);
         r->pn[k] = pn;
-        cr_row_apply(w, r, k, r->n, cr_lever_n(w, r->a, r->ra[k], r->n),
-                     cr_lever_n(w, r->b, r->rb[k], r->n), d);
-        change = cr_max(change, cr_abs(d));
+        cr_row_apply(w, r, k, r->n, r->la[k], r->lb[k], d);
+        change = cr_max(change, cr_div(cr_abs(d), r->mass_n[k]));
     }
     return change;
 }
@@ -539,7 +534,7 @@ static void cr_dbg_print(void)
 }
 #endif
 
-static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n)
+static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n, int max_sweeps)
 {
     int it, i, k;
 #ifdef CR_DEBUG_STATS
@@ -549,19 +544,24 @@ static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n)
     if (n > cr_dbg_max_rows)
         cr_dbg_max_rows = n;
 #endif
-    for (it = 0; it < CAROM_IMPACT_ISLAND_ITERATIONS; ++it) {
-        float change = 0.0f, biggest = 0.0f;
-        for (i = 0; i < n; ++i) {
+    float tol = 0.0f;
+    for (i = 0; i < n; ++i) {
+        const cr_impact_row *r = &rows[i];
+        tol = cr_max(tol, cr_max(cr_mul(CR_ISLAND_TOL, r->approach),
+                                 cr_mul(CR_ISLAND_REST_TOL, cr_rest_speed(w, r->a, r->b))));
+        for (k = 0; k < r->count; ++k)
+            tol = cr_max(tol, cr_mul(CR_ISLAND_TOL, cr_abs(r->target[k])));
+    }
+    for (it = 0; it < max_sweeps; ++it) {
+        float change = 0.0f;
+        for (i = 0; i < n; ++i)
             change = cr_max(change, cr_row_sweep(w, &rows[i]));
-            for (k = 0; k < rows[i].count; ++k)
-                biggest = cr_max(biggest, cr_abs(rows[i].pn[k]));
-        }
 #ifdef CR_DEBUG_STATS
         ++cr_dbg_iters;
         if (it == CAROM_IMPACT_ISLAND_ITERATIONS - 1)
             ++cr_dbg_capped;
 #endif
-        if (!cr_gt(change, cr_mul(CR_ISLAND_TOL, biggest)))
+        if (!cr_gt(change, tol))
             break;
         /* a single frictionless point is exact after one sweep */
         if (n == 1 && rows[0].count == 1 && !cr_gt(rows[0].friction, 0.0f))
@@ -639,6 +639,22 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
                                       m.n));
         r->approach = cr_max(r->approach, r->target[j]);
     }
+    for (j = 0; j < m.count; ++j) {
+        r->la[j] = cr_lever_n(w, p->a, r->ra[j], m.n);
+        r->lb[j] = cr_lever_n(w, p->b, r->rb[j], m.n);
+    }
+    r->block = 0;
+    if (m.count == 2) {
+        float lin = cr_add(A->inv_m, B->inv_m), det;
+        r->k11 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r->la[0], r->la[0])),
+                                    cr_mul(B->inv_I, cr_mul(r->lb[0], r->lb[0]))));
+        r->k22 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r->la[1], r->la[1])),
+                                    cr_mul(B->inv_I, cr_mul(r->lb[1], r->lb[1]))));
+        r->k12 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r->la[0], r->la[1])),
+                                    cr_mul(B->inv_I, cr_mul(r->lb[0], r->lb[1]))));
+        det = cr_sub(cr_mul(r->k11, r->k22), cr_mul(r->k12, r->k12));
+        r->block = cr_gt(det, cr_mul(CR_BLOCK_MIN_DET, cr_mul(r->k11, r->k22)));
+    }
     threshold = cr_impact_speed(w, p->a, p->b, scale);
     r->impact = cr_gt(r->approach, threshold);
     /* past the impact budget an impact is plastic (e = 0): a squeezed
@@ -699,7 +715,9 @@ static void cr_hold_contacts(carom_world *w, int nb, int nr, float t, float t_en
             w->rows[i].pn[k] = 0.0f;
             w->rows[i].pt[k] = 0.0f;
         }
-    cr_rows_solve(w, w->rows, nr);
+    /* a few sweeps: what is left is the contact solver's, whose relax
+     * sweeps follow this move */
+    cr_rows_solve(w, w->rows, nr, CR_HOLD_SWEEPS);
     for (i = 0; i < nb; ++i) {
         int id = w->island[i];
         cr_body *b = &w->bodies[id];
@@ -755,7 +773,7 @@ static int cr_island_grow(carom_world *w, int *nb, int nr, float t)
             }
         }
         if (grown)
-            cr_rows_solve(w, w->rows, nr);
+            cr_rows_solve(w, w->rows, nr, CAROM_IMPACT_ISLAND_ITERATIONS);
     }
     return nr;
 }
@@ -805,7 +823,7 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         p->toi = CR_NEVER;
     }
     CR_PHASE(w, CAROM_PHASE_IMPULSES);
-    cr_rows_solve(w, w->rows, nr);
+    cr_rows_solve(w, w->rows, nr, CAROM_IMPACT_ISLAND_ITERATIONS);
     nr = cr_island_grow(w, &nb, nr, t);
     for (i = 0; i < nr; ++i) {
         const cr_impact_row *r = &w->rows[i];
@@ -822,10 +840,8 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
             if (r->impact && !(w->contacts[p->contact].flags & CR_CONTACT_SOLVE))
                 cr_contact_remake(w, &w->contacts[p->contact]);
             w->contacts[p->contact].flags |= CR_CONTACT_SOLVE;
-            if (w->bodies[r->a].type != CAROM_BODY_STATIC)
-                w->sbody[r->a].active = 1;
-            if (w->bodies[r->b].type != CAROM_BODY_STATIC)
-                w->sbody[r->b].active = 1;
+            cr_solver_activate(w, r->a);
+            cr_solver_activate(w, r->b);
             w->reorder = 1;
         }
         if (!r->impact)
@@ -865,10 +881,8 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
             const cr_pair *p = &w->pairs[w->rows[i].pair];
             if (p->contact >= 0) {
                 w->contacts[p->contact].flags |= CR_CONTACT_SOLVE;
-                if (w->bodies[p->a].type != CAROM_BODY_STATIC)
-                    w->sbody[p->a].active = 1;
-                if (w->bodies[p->b].type != CAROM_BODY_STATIC)
-                    w->sbody[p->b].active = 1;
+                cr_solver_activate(w, p->a);
+                cr_solver_activate(w, p->b);
                 w->reorder = 1;
             }
         }
@@ -926,10 +940,8 @@ static carom_status cr_hand_over(carom_world *w, float t_end)
         if (c < 0)
             continue;
         w->contacts[c].flags |= CR_CONTACT_SOLVE;
-        if (w->bodies[p->a].type != CAROM_BODY_STATIC)
-            w->sbody[p->a].active = 1;
-        if (w->bodies[p->b].type != CAROM_BODY_STATIC)
-            w->sbody[p->b].active = 1;
+        cr_solver_activate(w, p->a);
+        cr_solver_activate(w, p->b);
         w->reorder = 1;
     }
     return CAROM_OK;

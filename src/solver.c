@@ -77,6 +77,15 @@ void cr_solver_begin(carom_world *w)
         sb->wp = 0.0f;
         sb->active = 0;
     }
+    w->active_count = 0;
+}
+
+void cr_solver_activate(carom_world *w, int i)
+{
+    if (w->bodies[i].type == CAROM_BODY_STATIC || w->sbody[i].active)
+        return;
+    w->sbody[i].active = 1;
+    w->active[w->active_count++] = i;
 }
 
 float cr_rest_speed(const carom_world *w, int a, int b)
@@ -135,8 +144,9 @@ float cr_contact_approach(const carom_world *w, const cr_contact *c)
 int cr_solver_classify(carom_world *w, int events)
 {
     int i, solved = 0;
-    for (i = 0; i < w->awake_count; ++i)
-        w->sbody[w->awake[i]].active = 0;
+    for (i = 0; i < w->active_count; ++i)
+        w->sbody[w->active[i]].active = 0;
+    w->active_count = 0;
     for (i = 0; i < w->contact_count; ++i) {
         cr_contact *c = &w->contacts[i];
         const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
@@ -161,9 +171,9 @@ int cr_solver_classify(carom_world *w, int events)
         if (take) {
             c->flags |= CR_CONTACT_SOLVE;
             if (cr_moves(A))
-                w->sbody[c->a].active = 1;
+                cr_solver_activate(w, c->a);
             if (cr_moves(B))
-                w->sbody[c->b].active = 1;
+                cr_solver_activate(w, c->b);
             ++solved;
         } else {
             c->flags &= ~CR_CONTACT_SOLVE;
@@ -210,12 +220,10 @@ static float cr_normal_lever(const carom_world *w, int body, cr_v2 r, cr_v2 n)
 void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s)
 {
     int i, k;
-    for (i = 0; i < w->awake_count; ++i) {
-        int id = w->awake[i];
+    for (i = 0; i < w->active_count; ++i) {
+        int id = w->active[i];
         cr_body *b = &w->bodies[id];
         cr_solver_body *sb = &w->sbody[id];
-        if (!sb->active)
-            continue;
         sb->v0 = b->v;
         sb->w0 = b->w;
         if (b->type == CAROM_BODY_DYNAMIC) {
@@ -440,8 +448,8 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
 {
     int it, i, k;
     float cap = cr_mul(s->push, s->h);
-    for (i = 0; i < w->awake_count; ++i) {
-        cr_solver_body *sb = &w->sbody[w->awake[i]];
+    for (i = 0; i < w->active_count; ++i) {
+        cr_solver_body *sb = &w->sbody[w->active[i]];
         sb->vp = cr_v(0.0f, 0.0f);
         sb->wp = 0.0f;
     }
@@ -476,11 +484,11 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
         }
     cr_correct_shock(w, s, cap);
     /* move along the pseudo-velocities, then forget them */
-    for (i = 0; i < w->awake_count; ++i) {
-        int id = w->awake[i];
+    for (i = 0; i < w->active_count; ++i) {
+        int id = w->active[i];
         cr_solver_body *sb = &w->sbody[id];
         cr_body *b = &w->bodies[id];
-        if (!sb->active || b->type != CAROM_BODY_DYNAMIC)
+        if (b->type != CAROM_BODY_DYNAMIC)
             continue;
         if (!cr_eq(sb->vp.x, 0.0f) || !cr_eq(sb->vp.y, 0.0f))
             cr_add_position(b, cr_vscale(s->h, sb->vp));
@@ -494,13 +502,11 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
 void cr_solver_set_drifts(carom_world *w, const cr_substep *s)
 {
     int i;
-    for (i = 0; i < w->awake_count; ++i) {
-        int id = w->awake[i];
+    for (i = 0; i < w->active_count; ++i) {
+        int id = w->active[i];
         cr_body *b = &w->bodies[id];
         cr_solver_body *sb = &w->sbody[id];
         cr_drift *d = &w->drift[id];
-        if (!sb->active)
-            continue;
         d->a = cr_vscale(s->inv_h, cr_vsub(b->v, sb->v0));
         d->alpha = cr_mul(s->inv_h, cr_sub(b->w, sb->w0));
         ++d->version;
@@ -512,12 +518,10 @@ void cr_solver_set_drifts(carom_world *w, const cr_substep *s)
 void cr_solver_update_deltas(carom_world *w)
 {
     int i;
-    for (i = 0; i < w->awake_count; ++i) {
-        int id = w->awake[i];
+    for (i = 0; i < w->active_count; ++i) {
+        int id = w->active[i];
         cr_solver_body *sb = &w->sbody[id];
         const cr_body *b = &w->bodies[id], *b0 = &w->backup[id];
-        if (!sb->active)
-            continue;
         sb->dp = cr_vsub(b->x, b0->x);
         /* q q0^-1 */
         sb->dq = cr_r(cr_add(cr_mul(b->q.c, b0->q.c), cr_mul(b->q.s, b0->q.s)),

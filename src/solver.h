@@ -13,8 +13,12 @@ typedef struct cr_substep {
 
 void cr_substep_init(cr_substep *s, const carom_world *w, float h);
 
-/* Start of the step: no displacement yet. */
+/* Start of the step: no displacement yet, no body active. */
 void cr_solver_begin(carom_world *w);
+
+/* Body i (if not static) takes part in this substep's solve: flagged and
+ * listed in w->active. */
+void cr_solver_activate(carom_world *w, int i);
 
 /*
  * Start of a substep: decide which contacts the solver takes (all of them

@@ -156,7 +156,7 @@ typedef struct cr_layout {
     size_t world, bodies, backup, info, boxes, awake, sbody, drift, mark, island,
         island_v, island_w, regrown, pair_head, proxies, ptmp, start, count,
         pairs, pair_tmp, contacts, solve_order, support, warm, warm_next, heap, rows,
-        events, touch, touch_next, touch_events, total;
+        events, touch, touch_next, touch_events, active, total;
 } cr_layout;
 
 static size_t cr_round_up(size_t n) { return (n + CR_ALIGN - 1u) & ~(size_t)(CR_ALIGN - 1u); }
@@ -207,6 +207,7 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     CR_PLACE(touch, c->touches, cr_touch);
     CR_PLACE(touch_next, c->touches, cr_touch);
     CR_PLACE(touch_events, c->touch_events, carom_touch_event);
+    CR_PLACE(active, c->bodies, int);
 #undef CR_PLACE
     if (at > limit)
         return 0;
@@ -322,6 +323,8 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->max_touch_events = c.touch_events;
     w->def.max_touch_events = c.touch_events;
     w->grid_valid = 0;
+    w->active = CR_AT(active, int);
+    w->active_count = 0;
 #undef CR_AT
     for (i = 0; i < c.bodies; ++i) {
         w->mark[i] = 0;
@@ -1093,10 +1096,9 @@ static carom_status cr_find_pairs(carom_world *w)
 static void cr_sync_active(carom_world *w, float t)
 {
     int i;
-    for (i = 0; i < w->awake_count; ++i) {
-        int id = w->awake[i];
-        if (w->sbody[id].active)
-            cr_sync(&w->bodies[id], &w->drift[id], t);
+    for (i = 0; i < w->active_count; ++i) {
+        int id = w->active[i];
+        cr_sync(&w->bodies[id], &w->drift[id], t);
     }
 }
 
@@ -1105,12 +1107,10 @@ static void cr_sync_active(carom_world *w, float t)
 static void cr_release_active(carom_world *w, float t)
 {
     int i;
-    for (i = 0; i < w->awake_count; ++i) {
-        int id = w->awake[i];
+    for (i = 0; i < w->active_count; ++i) {
+        int id = w->active[i];
         const cr_body *b = &w->bodies[id];
         cr_drift *d = &w->drift[id];
-        if (!w->sbody[id].active)
-            continue;
         d->t = t;
         d->a = b->type == CAROM_BODY_DYNAMIC ? b->a : cr_v(0.0f, 0.0f);
         d->alpha = b->type == CAROM_BODY_DYNAMIC ? b->alpha : 0.0f;

@@ -58,6 +58,10 @@ typedef struct cr_impact_row {
     float target[CAROM_MAX_MANIFOLD_POINTS]; /* normal velocity aimed for */
     float approach;                          /* fastest approach before */
     float pn[CAROM_MAX_MANIFOLD_POINTS], pt[CAROM_MAX_MANIFOLD_POINTS];
+    float la[CAROM_MAX_MANIFOLD_POINTS], lb[CAROM_MAX_MANIFOLD_POINTS];
+                     /* normal lever arms r x n (0 for circles) */
+    float k11, k12, k22; /* 2 points: the normal effective-mass matrix */
+    int block;       /* 2 points solved as one 2x2 problem */
     int impact;      /* approaching faster than the rest speed */
 } cr_impact_row;
 
@@ -105,6 +109,8 @@ struct carom_world {
     cr_warm *warm, *warm_next;/* impulses of the last step; of this one */
     int warm_count, warm_next_count;
     cr_solver_body *sbody;
+    int *active;              /* bodies the solver takes this substep */
+    int active_count;
     int *solve_order;         /* the contacts the solver takes, in order */
     int solve_count;
     int *support;             /* supported bodies, bottom up (breadth first
