@@ -195,8 +195,15 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     CR_PLACE(start, c->buckets + 1, int);
     CR_PLACE(count, c->bodies + 1, int);
     CR_PLACE(pairs, c->pairs, cr_pair);
-    CR_PLACE(pair_tmp, c->pairs, cr_pair);
     CR_PLACE(contacts, c->contacts, cr_contact);
+    /* the pair sort's scratch (and the touch sort's, at the step's end) is
+     * the contact array, free while pairs are found: no memory of its own
+     * unless the contacts are too few to hold the pairs */
+    if ((size_t)c->contacts * sizeof(cr_contact) >= (size_t)c->pairs * sizeof(cr_pair) &&
+        (size_t)c->contacts * sizeof(cr_contact) >= (size_t)c->touches * sizeof(cr_touch))
+        l->pair_tmp = l->contacts;
+    else
+        CR_PLACE(pair_tmp, c->pairs > c->touches ? c->pairs : c->touches, cr_pair);
     CR_PLACE(solve_order, c->contacts, int);
     CR_PLACE(support, c->bodies, int);
     CR_PLACE(warm, c->contacts, cr_warm);
