@@ -123,13 +123,13 @@ typedef struct cr_pair_out {
     void *ctx;
 } cr_pair_out;
 
-static void cr_emit(cr_pair_out *o, const cr_box *boxes, int a, int b)
+/* Pair (a, b), whose boxes overlap, if the filter accepts it. */
+static void cr_emit(cr_pair_out *o, int a, int b)
 {
     cr_pair *p;
     /* past the capacity the count stops at cap + 1: it cannot overflow,
      * whatever the number of overlapping bodies */
-    if (o->found > (long)o->cap || a == b || !cr_boxes_overlap(&boxes[a], &boxes[b]) ||
-        !o->accept(o->ctx, a, b))
+    if (o->found > (long)o->cap || a == b || !o->accept(o->ctx, a, b))
         return;
     if (o->found++ >= (long)o->cap)
         return;
@@ -146,15 +146,16 @@ static void cr_emit(cr_pair_out *o, const cr_box *boxes, int a, int b)
     p->toi = 0.0f;
 }
 
-/* Pairs of grid item i with the items of cell (cx, cy). */
-static void cr_cell_pairs(const cr_broadphase *bp, const cr_box *boxes, int i,
-                          int cx, int cy, cr_pair_out *o)
+/* Pairs of item i (its box kept in the proxy: the loop reads one array)
+ * with the items of cell (cx, cy). */
+static void cr_cell_pairs(const cr_broadphase *bp, int i, int cx, int cy, cr_pair_out *o)
 {
+    const cr_proxy *p = &bp->proxies[i];
     int k = cr_bucket(bp, cx, cy), j;
     for (j = bp->start[k]; j < bp->start[k + 1]; ++j) {
         const cr_proxy *q = &bp->proxies[j];
-        if (q->cx == cx && q->cy == cy)
-            cr_emit(o, boxes, bp->proxies[i].body, q->body);
+        if (q->cx == cx && q->cy == cy && cr_boxes_overlap(&p->box, &q->box))
+            cr_emit(o, p->body, q->body);
     }
 }
 
@@ -164,6 +165,7 @@ long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
 {
     cr_pair_out o;
     int i, j, n = bp->grid_count + bp->big_count;
+    (void)boxes; /* the proxies carry copies, read in one array */
     o.out = out;
     o.cap = cap;
     o.found = 0;
@@ -175,19 +177,20 @@ long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
         /* the same cell: later items of the bucket only */
         for (j = i + 1; j < bp->start[k + 1]; ++j) {
             const cr_proxy *q = &bp->proxies[j];
-            if (q->cx == p->cx && q->cy == p->cy)
-                cr_emit(&o, boxes, p->body, q->body);
+            if (q->cx == p->cx && q->cy == p->cy && cr_boxes_overlap(&p->box, &q->box))
+                cr_emit(&o, p->body, q->body);
         }
-        cr_cell_pairs(bp, boxes, i, p->cx + 1, p->cy, &o);
-        cr_cell_pairs(bp, boxes, i, p->cx - 1, p->cy + 1, &o);
-        cr_cell_pairs(bp, boxes, i, p->cx, p->cy + 1, &o);
-        cr_cell_pairs(bp, boxes, i, p->cx + 1, p->cy + 1, &o);
+        cr_cell_pairs(bp, i, p->cx + 1, p->cy, &o);
+        cr_cell_pairs(bp, i, p->cx - 1, p->cy + 1, &o);
+        cr_cell_pairs(bp, i, p->cx, p->cy + 1, &o);
+        cr_cell_pairs(bp, i, p->cx + 1, p->cy + 1, &o);
     }
     /* big boxes: against each other, then against the grid */
     for (i = bp->grid_count; i < n; ++i) {
         const cr_proxy *p = &bp->proxies[i];
         for (j = i + 1; j < n; ++j)
-            cr_emit(&o, boxes, p->body, bp->proxies[j].body);
+            if (cr_boxes_overlap(&p->box, &bp->proxies[j].box))
+                cr_emit(&o, p->body, bp->proxies[j].body);
     }
     for (i = bp->grid_count; i < n; ++i) {
         const cr_box *q = &bp->proxies[i].box;
@@ -200,12 +203,13 @@ long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
         long cells = ((long)x1 - x0 + 1) * ((long)y1 - y0 + 1);
         if (cells > (long)bp->grid_count) {
             for (j = 0; j < bp->grid_count; ++j)
-                cr_emit(&o, boxes, bp->proxies[i].body, bp->proxies[j].body);
+                if (cr_boxes_overlap(q, &bp->proxies[j].box))
+                    cr_emit(&o, bp->proxies[i].body, bp->proxies[j].body);
         } else {
             int cx, cy;
             for (cy = y0; cy <= y1; ++cy)
                 for (cx = x0; cx <= x1; ++cx)
-                    cr_cell_pairs(bp, boxes, i, cx, cy, &o);
+                    cr_cell_pairs(bp, i, cx, cy, &o);
         }
     }
     return o.found;
