@@ -158,6 +158,12 @@ struct carom_world {
 /* A body's id: its slot and the slot's generation. */
 int cr_body_id(const carom_world *w, int slot);
 
+/* The slot an id names, or CAROM_ERR_BAD_BODY_ID / CAROM_ERR_STALE_ID. */
+carom_status cr_slot_of(const carom_world *w, int id, int *slot);
+
+/* The scale the tolerances follow, from the bodies now in the world. */
+void cr_scale_compute(const carom_world *w, cr_scale *s);
+
 /* May bodies a and b collide: one of them moves, they are not two sensors,
  * and their filter lets them. */
 int cr_may_collide(const carom_world *w, int a, int b);
