@@ -458,10 +458,10 @@ static float cr_row_vn(const carom_world *w, const cr_impact_row *r, int k,
  * it made at one of its points (impulse change over effective mass). */
 static float cr_row_sweep(carom_world *w, cr_impact_row *r)
 {
-    const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
     float change = 0.0f;
     int k;
 #if CAROM_ENABLE_FRICTION
+    const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
     cr_v2 t = cr_vright(r->n);
     if (cr_gt(r->friction, 0.0f) && r->count == 2) {
         /* one row for both points (same line of action), as the contact
