@@ -41,6 +41,9 @@ include tools/validation/validation.mk
 # (tools/bench/bench.mk): make bench, bench-quick, bench-build. Speed and
 # memory targets live there, not in unit tests.
 include tools/bench/bench.mk
+# Error against run time (tools/accuracy/accuracy.mk): make accuracy,
+# make accuracy-check.
+include tools/accuracy/accuracy.mk
 # The stress suite (tools/stress/stress.mk): make stress, make stress-check.
 include tools/stress/stress.mk
 # `carom render`'s drawing code (tools/render/render.mk), linked into build/carom.
@@ -50,6 +53,10 @@ include mk/install.mk
 # The scene suite on emulated Cortex-M (tools/embedded/embedded.mk):
 # check-embedded, check-embedded-negative, embedded-insn, embedded-size.
 include tools/embedded/embedded.mk
+# make lean SCENE=FILE, make lean-check: the smallest build for a scene.
+include mk/lean.mk
+# make fuzz, fuzz-regress, fuzz-build, fuzz-clean: libFuzzer (tests/fuzz/).
+include tests/fuzz/fuzz.mk
 # make docs-check: every path, file and make target the docs name exists.
 include mk/docs.mk
 HAVE_BOX2D := $(shell pkg-config --exists box2d 2>/dev/null && echo yes)
@@ -165,7 +172,10 @@ check: deps
 	@$(MAKE) --no-print-directory validate-check
 	@$(MAKE) --no-print-directory cli-test
 	@$(MAKE) --no-print-directory stress-check
+	@$(MAKE) --no-print-directory accuracy-check
 	@$(MAKE) --no-print-directory check-embedded
+	@$(MAKE) --no-print-directory lean-check
+	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=30
 	@$(MAKE) --no-print-directory install-test
 	@$(MAKE) --no-print-directory check-cxx
 	@$(MAKE) --no-print-directory help-check
@@ -195,7 +205,7 @@ help:
 	@echo "  make fuzz-build      the libFuzzer harnesses only, in $(BUILD)/fuzz/"
 	@echo ""
 	@echo "test"
-	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, readme-test, validate-check, cli-test, stress-check, check-embedded, install-test, check-cxx, help-check"
+	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, readme-test, validate-check, cli-test, stress-check, accuracy-check, check-embedded, lean-check, fuzz (30 s a harness when clang is here), install-test, check-cxx, help-check"
 	@echo "  make unit            the Check unit tests, plain and profiling builds"
 	@echo "  make cli-test        $(CLI)'s command-line tests (tests/cli_test.sh)"
 	@echo "  make readme-test     the README's example program compiles and runs"
@@ -208,6 +218,7 @@ help:
 	@echo "  make check-embedded-negative  the M4F firmware with fused multiply-add must fail that comparison"
 	@echo "  make validate-check  carom against Box2D within tolerance; report and figure under $(BUILD)/"
 	@echo "  make stress-check    the stress checker's self-test, then the fast stress scenes (a few seconds)"
+	@echo "  make accuracy-check  the fast accuracy subset (bounce and projectile at three dt) with tolerances (seconds)"
 	@echo "  make fuzz            build the libFuzzer harnesses, fuzz each FUZZ_SECONDS (30), replay; needs clang"
 	@echo "  make fuzz-regress    replay the fuzz seed corpus and tests/fuzz/crashers/ (seconds)"
 	@echo "  make install-test    install into a temporary DESTDIR, build and run a program with pkg-config, uninstall"
@@ -221,11 +232,17 @@ help:
 	@echo "  make bench           carom's methods against Box2D 2.4.1 (and v3 with B2V3_DIR=) at 10^2..10^5 bodies: docs/benchmarks.md, docs/bench-*.png (~10 min)"
 	@echo "  make bench-quick     the same at 10^2 and 10^3 bodies, report under $(BUILD)/bench/ (~1 min)"
 	@echo "  make bench-build     $(BUILD)/carom-bench and $(BUILD)/carom-bench-ops only"
-	@echo "  make stress          every stress scene through carom and Box2D: docs/stability.md (~10 min)"
+	@echo "  make stress          every stress scene through carom and Box2D: docs/stability.md (~2 min)"
+	@echo "  make accuracy        error against run time, every method and Box2D over dt 1/15..1/3840: docs/accuracy.md and figures (a few minutes)"
 	@echo "  make stress-scenes   regenerate tools/scenes/stress (python3)"
 	@echo "  make render-images   redraw docs/images/ with carom render (default scene animated; stills; needs gnuplot)"
 	@echo "  make embedded-insn   instructions per run on the emulated M4F against carom profile --weights cortex-m4f"
 	@echo "  make embedded-size   text, data and bss of the library per Cortex-M core"
+	@echo "  make embedded-calibrate  fit the profiler's instruction model to qemu's per-phase counts (tools/embedded/cortex-m4f.cal)"
+	@echo "  make embedded-lean8k  the bounce and 5-box stack scenes with their lean capacities in 8 KB of world memory on the M0"
+	@echo "  make embedded-doc    regenerate docs/embedded.md (footprints, stack, memory, calibration; ~7 min)"
+	@echo "  make lean            SCENE=FILE: build/lean/libcarom.a and build/lean/carom for that scene, size table, bit-identical check"
+	@echo "  make lean-check      make lean on two example scenes, checked (seconds)"
 	@echo ""
 	@echo "install"
 	@echo "  make install         headers, libcarom.a, libcarom.so.$(VERSION), carom.pc, bin/carom, docs into DESTDIR/PREFIX"

@@ -78,6 +78,21 @@
 #define CAROM_ENABLE_TOUCH_EVENTS 1 /**< begin-touch / end-touch reports */
 #endif
 
+#ifndef CAROM_ENABLE_STACKING
+#define CAROM_ENABLE_STACKING 1 /**< support order, priming of new stacks and
+                                     shock propagation: what keeps tall
+                                     stacks and heavy-on-light piles standing
+                                     under gravity; off: smaller code for
+                                     scenes without gravity, where these
+                                     passes do nothing */
+#endif
+
+#ifndef CAROM_ENABLE_STATUS_NAMES
+#define CAROM_ENABLE_STATUS_NAMES 1 /**< carom_status_string() names every
+                                         status; off: one generic string
+                                         (saves the table, about 1 KB) */
+#endif
+
 #ifndef CAROM_ENABLE_PROFILE
 #define CAROM_ENABLE_PROFILE 0 /**< count every float operation by kind and
                                     phase; off: the arithmetic layer is plain

@@ -54,22 +54,35 @@ static int cr_asleep(const cr_body *b)
     return b->type == CAROM_BODY_DYNAMIC && !(b->flags & CR_BODY_AWAKE);
 }
 
-static int cr_restless(const carom_world *w, const cr_body *b)
+/* Awake and able to move: a dynamic or kinematic body that is simulated. */
+static int cr_awake_mover(const cr_body *b)
 {
-    return b->type != CAROM_BODY_STATIC && (b->flags & CR_BODY_AWAKE) &&
-           cr_lt(b->still_time, w->def.sleep_time);
+    return b->type != CAROM_BODY_STATIC && (b->flags & CR_BODY_AWAKE);
 }
 
+/*
+ * A sleeping body paired with an awake one (their boxes over the step
+ * overlap) wakes with its island: the two may touch this step, and a
+ * sleeping body takes no part in the solve (it would be pushed without
+ * moving, or move while asleep). Even an awake body that is itself still
+ * wakes it: the two are one island now, which sleeps again when all of it
+ * is still.
+ */
 int cr_island_wake_touched(carom_world *w)
 {
     int i, woke = 0;
+#if !CAROM_ENABLE_SLEEP
+    (void)i;
+    (void)w;
+    return 0; /* nothing sleeps */
+#endif
     for (i = 0; i < w->pair_count; ++i) {
         const cr_pair *p = &w->pairs[i];
         const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
-        if (cr_asleep(A) && cr_restless(w, B)) {
+        if (cr_asleep(A) && cr_awake_mover(B)) {
             cr_island_wake(w, p->a);
             woke = 1;
-        } else if (cr_asleep(B) && cr_restless(w, A)) {
+        } else if (cr_asleep(B) && cr_awake_mover(A)) {
             cr_island_wake(w, p->b);
             woke = 1;
         }
@@ -146,10 +159,13 @@ void cr_island_sleep(carom_world *w, float dt)
         if (w->bodies[c->b].type == CAROM_BODY_DYNAMIC)
             can_sleep[cr_find(parent, c->b)] = 1;
     }
+    /* still for sleep_time, and for at least this step (sleep_time 0: an
+     * island sleeps after its first still step, never while moving) */
     for (i = 0; i < w->awake_count; ++i) {
         int id = w->awake[i];
         const cr_body *b = &w->bodies[id];
-        if (b->type != CAROM_BODY_DYNAMIC || cr_lt(b->still_time, w->def.sleep_time))
+        if (b->type != CAROM_BODY_DYNAMIC || cr_lt(b->still_time, w->def.sleep_time) ||
+            !cr_gt(b->still_time, 0.0f))
             can_sleep[cr_find(parent, id)] = 0;
     }
     for (i = 0; i < w->awake_count; ++i) {

@@ -82,7 +82,9 @@ void cr_solver_begin(carom_world *w)
 
 void cr_solver_activate(carom_world *w, int i)
 {
-    if (w->bodies[i].type == CAROM_BODY_STATIC || w->sbody[i].active)
+    /* static and sleeping bodies never move */
+    if (w->bodies[i].type == CAROM_BODY_STATIC || !(w->bodies[i].flags & CR_BODY_AWAKE) ||
+        w->sbody[i].active)
         return;
     w->sbody[i].active = 1;
     w->active[w->active_count++] = i;
@@ -633,11 +635,20 @@ static int cr_supports(const cr_contact *c, int lower, cr_v2 up)
 
 static int cr_up(const carom_world *w, cr_v2 *up)
 {
+#if !CAROM_ENABLE_STACKING
+    /* no support order, priming or shock propagation (what they do for
+     * stacks under gravity is compiled out; without gravity they do
+     * nothing anyway) */
+    (void)w;
+    (void)up;
+    return 0;
+#else
     float g = cr_vlen(w->def.gravity);
     if (!cr_gt(g, 0.0f))
         return 0;
     *up = cr_vscale(cr_div(-1.0f, g), w->def.gravity);
     return 1;
+#endif
 }
 
 /*

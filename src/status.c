@@ -5,6 +5,7 @@
 
 #include "carom.h"
 
+#if CAROM_ENABLE_STATUS_NAMES
 static const char *const cr_status_names[CAROM_STATUS_COUNT] = {
     "ok",
     "null pointer",
@@ -45,6 +46,13 @@ const char *carom_status_string(carom_status status)
         return "unknown status";
     return cr_status_names[status];
 }
+#else
+const char *carom_status_string(carom_status status)
+{
+    /* names compiled out: the number is in carom.h's carom_status */
+    return status == CAROM_OK ? "ok" : "carom error (CAROM_ENABLE_STATUS_NAMES is 0)";
+}
+#endif
 
 static const char *const cr_method_names[CAROM_METHOD_COUNT] = {
     "discrete",

@@ -39,8 +39,6 @@
 
 #include "narrowphase.h"
 
-#if CAROM_ENABLE_EVENTS
-
 /* Subdivision of the quartic: at most this many interval tests. */
 #define CR_QUARTIC_MAX_EVALS 256
 #define CR_QUARTIC_STACK 48
@@ -79,16 +77,6 @@ static cr_v2 cr_position_at(const cr_mover *m, float t)
 static cr_v2 cr_speed_at(const cr_mover *m, float t)
 {
     return cr_vmadd(m->b->v, cr_sub(t, m->d->t), m->d->a);
-}
-
-static void cr_mover_pose(const cr_mover *m, float t, cr_v2 *x, cr_rot *q)
-{
-    if (m->b->type == CAROM_BODY_STATIC) {
-        *x = m->b->x;
-        *q = m->b->q;
-        return;
-    }
-    cr_pose_at(m->b, m->d, t, x, q);
 }
 
 void cr_swept_box(const cr_mover *m, float t0, float t1, float margin,
@@ -138,6 +126,20 @@ void cr_swept_box(const cr_mover *m, float t0, float t1, float margin,
         out->lo_y = cr_sub(cr_add(lo[1], local.lo_y), margin);
         out->hi_y = cr_add(cr_add(hi[1], local.hi_y), margin);
     }
+}
+
+/* The swept boxes above serve every method (the broadphase); what follows
+ * times impacts, for the events methods only. */
+#if CAROM_ENABLE_EVENTS
+
+static void cr_mover_pose(const cr_mover *m, float t, cr_v2 *x, cr_rot *q)
+{
+    if (m->b->type == CAROM_BODY_STATIC) {
+        *x = m->b->x;
+        *q = m->b->q;
+        return;
+    }
+    cr_pose_at(m->b, m->d, t, x, q);
 }
 
 /* Relative motion of B w.r.t. A from time t: d(s) = p + u s + q s^2. */
@@ -386,6 +388,7 @@ static int cr_toi_circle_polygon(const cr_mover *P, const cr_mover *C, float t0,
     return found;
 }
 
+#if CAROM_ENABLE_POLYGON_POLYGON
 /* Vertices of B against edges of A, neither rotating. */
 static int cr_toi_vertices_edges(const cr_mover *A, const cr_mover *B, float t0,
                                  float hi, float *best, int found)
@@ -408,6 +411,7 @@ static int cr_toi_vertices_edges(const cr_mover *A, const cr_mover *B, float t0,
     }
     return found;
 }
+#endif
 
 static float cr_separation_at(const cr_mover *A, const cr_mover *B, float t)
 {
@@ -485,8 +489,10 @@ int cr_time_of_impact(const cr_mover *A, const cr_mover *B, float t0, float t1,
     } else if (A->s->kind == CAROM_SHAPE_CIRCLE) {
         hit = cr_toi_circle_polygon(B, A, t0, hi, &s);
     } else {
+#if CAROM_ENABLE_POLYGON_POLYGON
         hit = cr_toi_vertices_edges(A, B, t0, hi, &s, 0);
         hit = cr_toi_vertices_edges(B, A, t0, hi, &s, hit);
+#endif
     }
 #else
     (void)tol;

@@ -134,9 +134,12 @@ static void cr_caps_of(const carom_world_def *d, cr_caps *c)
                      : ((long)CAROM_DEFAULT_IMPACTS_PER_BODY * b > CAROM_MIN_IMPACTS
                             ? CAROM_DEFAULT_IMPACTS_PER_BODY * b
                             : CAROM_MIN_IMPACTS);
-    c->heap = c->pairs + CR_HEAP_SLACK;
+    c->heap = c->pairs + (c->pairs < CR_HEAP_SLACK ? c->pairs : CR_HEAP_SLACK);
     c->island = b < CAROM_IMPACT_ISLAND_MAX_BODIES ? b : CAROM_IMPACT_ISLAND_MAX_BODIES;
-    c->rows = CR_ROWS_PER_ISLAND_BODY * c->island;
+    /* a row is a pair: never more rows than pairs */
+    c->rows = CR_ROWS_PER_ISLAND_BODY * c->island < c->pairs
+                  ? CR_ROWS_PER_ISLAND_BODY * c->island
+                  : c->pairs;
     c->buckets = cr_broadphase_bucket_cap(b);
 #if CAROM_ENABLE_TOUCH_EVENTS || CAROM_ENABLE_SENSORS
     /* a touching pair is a candidate pair */

@@ -645,6 +645,167 @@ rc=$?
 expect_rc 2 "render --png without gnuplot"
 stderr_has "gnuplot" "render --png without gnuplot: stderr names gnuplot"
 
+# ---- profile --calibration ----------------------------------------------------------
+
+# A calibration of 1 per float operation in every phase and 1000 per step
+# outside them: the prediction is the op count plus 1000 x steps.
+cat > "$tmp/ops.cal" <<'EOS'
+carom-calibration 1
+name ops-plus-steps  # a test
+unit instructions
+integration        1 0 0 0 0
+broadphase         1 0 0 0 0
+narrowphase        1 0 0 0 0
+impact_timing      1 0 0 0 0
+impulse_resolution 1 0 0 0 0
+resting_contacts   1 0 0 0 0
+step               0 1000 0 0 0
+EOS
+run profile "$default_scene" --steps 30 --json --calibration "$tmp/ops.cal"
+expect_rc 0 "profile --calibration"
+awk '{
+    sub(/"weights": \{[^}]*\}/, "")
+    n = split($0, a, /[^0-9a-z_]+/); ops = 0
+    for (i = 1; i < n; i++)
+        if (a[i] ~ /^(add|sub|mul|div|cmp|sqrt)$/ && a[i + 1] ~ /^[0-9]+$/) ops += a[i + 1]
+    s = $0; sub(/.*"calibrated".*"total": /, "", s); sub(/[}, ].*/, "", s)
+    exit (s + 0 != ops + 30 * 1000)
+}' "$tmp/out"
+verdict $? "profile --calibration: total = float operations + 1000 x steps"
+check "profile --calibration --json: the calibration's name" \
+    grep -q '"calibrated": {"name": "ops-plus-steps", "unit": "instructions"' "$tmp/out"
+run profile "$default_scene" --steps 30 --calibration "$tmp/ops.cal"
+check "profile --calibration: a calibrated table" grep -q "^calibrated (ops-plus-steps" "$tmp/out"
+check "profile: awake body-steps and contact-steps" grep -q "^awake body-steps [0-9]*, contact-steps [0-9]*$" "$tmp/out"
+if [ -f "$root/tools/embedded/cortex-m4f.cal" ]; then
+    run profile "$default_scene" --steps 30 --calibration "$root/tools/embedded/cortex-m4f.cal"
+    expect_rc 0 "profile --calibration tools/embedded/cortex-m4f.cal"
+fi
+sed '/^step/d' "$tmp/ops.cal" > "$tmp/nostep.cal"
+sed 's/^broadphase         1/broadphase         -1/' "$tmp/ops.cal" > "$tmp/neg.cal"
+sed '1d' "$tmp/ops.cal" > "$tmp/nohead.cal"
+sed 's/^integration        1 0 0 0 0/integration 1 0 0 0/' "$tmp/ops.cal" > "$tmp/short.cal"
+for bad in nostep neg nohead short no-such; do
+    run profile "$default_scene" --steps 5 --calibration "$tmp/$bad.cal"
+    expect_rc 2 "profile --calibration: $bad"
+done
+stderr_has "no-such.cal" "profile --calibration of a missing file: stderr names it"
+run run "$default_scene" --calibration "$tmp/ops.cal"
+expect_rc 2 "--calibration is an option of profile only"
+
+# ---- lean -------------------------------------------------------------------------
+
+run lean --help
+expect_rc 0 "lean --help"
+check "lean --help: usage names lean" grep -q "carom lean SCENE" "$tmp/out"
+check "lean --help: lists --margin" grep -q -e "--margin PCT" "$tmp/out"
+run lean
+expect_rc 2 "lean without a scene"
+run lean "$tmp/no-such.scene"
+expect_rc 2 "lean of a missing scene"
+stderr_has "no-such.scene" "lean of a missing scene: stderr names it"
+for args in "--margin -1" "--margin abc" "--slack -2" "--trace x.csv"; do
+    # shellcheck disable=SC2086 # split "--opt value" on purpose
+    run lean "$default_scene" $args
+    expect_rc 2 "lean $args"
+done
+stderr_has "not of lean" "lean --trace: stderr says --trace is not an option of lean"
+
+# header_has HEADER NAME VALUE: '#define NAME VALUE' in the header
+header_has() {
+    grep -q "^#define $2 $3\\( \\|\$\\)" "$1"
+}
+
+# Two frictionless circles meeting head on in zero gravity: circles only,
+# nothing turns, no friction, no forces; the events method; one pair.
+cat > "$tmp/twoballs.scene" <<'EOS'
+carom-scene 1
+world gravity=0,0 steps=90 method=events
+body circle radius=0.5 position=-2,0 velocity=2,0 restitution=1 friction=0
+body circle radius=0.5 position=2,0 velocity=-2,0 restitution=1 friction=0
+EOS
+run lean "$tmp/twoballs.scene"
+expect_rc 0 "lean of two frictionless balls"
+cp "$tmp/out" "$tmp/twoballs.h"
+check "lean: nothing on stderr" test ! -s "$tmp/err"
+for sw in POLYGONS DYNAMIC_POLYGONS POLYGON_POLYGON ROTATION FRICTION FORCES SLEEP KINEMATIC; do
+    check "lean two balls: CAROM_ENABLE_$sw 0" header_has "$tmp/twoballs.h" "CAROM_ENABLE_$sw" 0
+done
+check "lean two balls: CAROM_ENABLE_EVENTS 1 (method events)" \
+    header_has "$tmp/twoballs.h" CAROM_ENABLE_EVENTS 1
+check "lean two balls: CAROM_LEAN_MAX_BODIES 2" header_has "$tmp/twoballs.h" CAROM_LEAN_MAX_BODIES 2
+# one pair at most: 1 + 25 % of 1 rounded up + 4 = 6
+check "lean two balls: CAROM_LEAN_MAX_PAIRS 6 (1 + 25 % + 4)" \
+    header_has "$tmp/twoballs.h" CAROM_LEAN_MAX_PAIRS 6
+check "lean two balls: every switch has a reason" \
+    test "$(grep -c '^#define CAROM_ENABLE_[A-Z_]* [01] /\* o[nf]*: ..*\*/$' "$tmp/twoballs.h")" -eq \
+         "$(grep -c '^#define CAROM_ENABLE_' "$tmp/twoballs.h")"
+sed -n 's/^#ifndef \(CAROM_ENABLE_[A-Z0-9_]*\).*/\1/p' "$root/include/carom_config.h" \
+    > "$tmp/switches"
+while read -r sw; do
+    grep -q "^#define $sw " "$tmp/twoballs.h" || missing_sw="${missing_sw:-} $sw"
+done < "$tmp/switches"
+check "lean: the header sets every switch of carom_config.h${missing_sw:+ (missing:$missing_sw)}" \
+    test -z "${missing_sw:-}"
+run lean "$tmp/twoballs.scene" --margin 0 --slack 0
+check "lean --margin 0 --slack 0: CAROM_LEAN_MAX_PAIRS 1, the worst case met" \
+    header_has "$tmp/out" CAROM_LEAN_MAX_PAIRS 1
+check "lean --margin 0 --slack 0: CAROM_LEAN_MAX_IMPACTS 1" \
+    header_has "$tmp/out" CAROM_LEAN_MAX_IMPACTS 1
+run lean "$tmp/twoballs.scene" --margin=100 --slack=1
+check "lean --margin=100 --slack=1: CAROM_LEAN_MAX_PAIRS 3" \
+    header_has "$tmp/out" CAROM_LEAN_MAX_PAIRS 3
+run lean "$tmp/twoballs.scene" --method discrete
+check "lean --method discrete: CAROM_ENABLE_EVENTS 0" \
+    header_has "$tmp/out" CAROM_ENABLE_EVENTS 0
+# the header compiles, and a world sized by it can be made
+if command -v cc > /dev/null 2>&1; then
+    cat > "$tmp/lean_prog.c" <<'EOS'
+#include <stdio.h>
+#include "carom.h"
+int main(void)
+{
+    static unsigned char mem[CAROM_LEAN_WORLD_BYTES];
+    carom_world_def wd = carom_default_world_def();
+    CAROM_LEAN_SET_CAPACITIES(&wd);
+    printf("%d %lu\n", CAROM_ENABLE_POLYGONS, (unsigned long)sizeof mem);
+    return carom_world_buffer_size(&wd) > 0 ? 0 : 1;
+}
+EOS
+    # only compiled, not linked: no library of this configuration here
+    check "lean: the header compiles with carom.h (-include)" \
+        cc -std=c99 -pedantic -Wall -Werror -I"$root/include" -include "$tmp/twoballs.h" \
+            -c "$tmp/lean_prog.c" -o "$tmp/lean_prog.o"
+else
+    ok "lean: the header compiles # SKIP no cc"
+fi
+
+# A box spinning onto a static box floor, with friction: polygons that
+# move and meet polygons, rotation, friction.
+cat > "$tmp/spinbox.scene" <<'EOS'
+carom-scene 1
+world gravity=0,-10 steps=120
+body box static half-extents=5,0.5 position=0,-0.5
+body box half-extents=0.5,0.5 position=0,2 angular-velocity=3
+EOS
+run lean "$tmp/spinbox.scene"
+expect_rc 0 "lean of a spinning box on a floor"
+for sw in POLYGONS DYNAMIC_POLYGONS POLYGON_POLYGON ROTATION FRICTION; do
+    check "lean spinning box: CAROM_ENABLE_$sw 1" header_has "$tmp/out" "CAROM_ENABLE_$sw" 1
+done
+check "lean spinning box: CAROM_ENABLE_FORCES 0" header_has "$tmp/out" CAROM_ENABLE_FORCES 0
+# a constant force needs CAROM_ENABLE_FORCES
+sed 's/angular-velocity=3/force=1,0/' "$tmp/spinbox.scene" > "$tmp/forcebox.scene"
+run lean "$tmp/forcebox.scene"
+check "lean with a force: CAROM_ENABLE_FORCES 1" header_has "$tmp/out" CAROM_ENABLE_FORCES 1
+# the failing scene cannot be measured: exit 1, reason on stderr
+run lean "$tmp/far.scene"
+expect_rc 1 "lean of a scene that fails"
+stderr_has "step 3" "lean of a failing scene: stderr names the step"
+printf 'carom-scene 1\nworld gravity=0,0\n' > "$tmp/empty.scene"
+run lean "$tmp/empty.scene"
+expect_rc 2 "lean of a scene without bodies"
+
 # ---- summary -------------------------------------------------------------------
 
 echo "$passed passed, $failed failed"

@@ -4,11 +4,13 @@
  *   carom run SCENE       final state as CSV (and --trace, --events)
  *   carom profile SCENE   operation counts and their weighted cost
  *   carom render SCENE    an animated SVG (and PNG frames with gnuplot)
+ *   carom lean SCENE      a header of switches and capacities for the
+ *                         smallest build that gives the scene's results
  *
- * The three commands share one table of options (`options` below) and one
- * simulation loop. Exit status: 0 success, 1 the simulation reported an
- * error (the state reached is still written, marked partial), 2 bad usage
- * or a bad scene.
+ * The commands share one table of options (`options` below); run, profile
+ * and render share one simulation loop. Exit status: 0 success, 1 the
+ * simulation reported an error (the state reached is still written,
+ * marked partial), 2 bad usage or a bad scene.
  */
 #include <errno.h>
 #include <math.h>
@@ -41,16 +43,25 @@
 #define MAX_MARKERS 10000L
 /* Progress is refreshed at most this often (seconds). */
 #define PROGRESS_PERIOD 0.2
+/* lean: default --margin (per cent) and --slack of the capacities. */
+#define LEAN_DEFAULT_MARGIN 25L
+#define LEAN_DEFAULT_SLACK 4L
 
 /* ---- options: one table for run, profile and render ---------------------- */
 
-enum { CMD_RUN = 1u, CMD_PROFILE = 2u, CMD_RENDER = 4u, CMD_ALL = 7u };
+/* Commands, as bits: an option lists the commands that accept it. CMD_SIM:
+ * the three that step a scene and write what happened; CMD_ALL: every
+ * command. */
+enum {
+    CMD_RUN = 1u, CMD_PROFILE = 2u, CMD_RENDER = 4u, CMD_LEAN = 8u,
+    CMD_SIM = 7u, CMD_ALL = 15u
+};
 
 typedef enum opt_id {
     OPT_STEPS, OPT_DT, OPT_METHOD, OPT_TRACE, OPT_EVENTS, OPT_MAX_OUTPUT,
     OPT_FORCE, OPT_PROGRESS, OPT_NO_PROGRESS, OPT_WEIGHTS, OPT_JSON,
     OPT_OUTPUT, OPT_PNG, OPT_FPS, OPT_EVERY, OPT_IMPACTS, OPT_SIZE, OPT_VIEW,
-    OPT_HELP
+    OPT_MARGIN, OPT_SLACK, OPT_CALIBRATION, OPT_HELP
 } opt_id;
 
 typedef struct cli_option {
@@ -69,16 +80,16 @@ static const cli_option options[] = {
     {OPT_METHOD, "method", 0, "NAME", CMD_ALL,
      "events (default), discrete or first-impact\n"
      "(overrides method=; see docs/events.md)"},
-    {OPT_TRACE, "trace", 0, "FILE", CMD_ALL,
+    {OPT_TRACE, "trace", 0, "FILE", CMD_SIM,
      "write every body's state at step 0 and after every\n"
      "step: step,t,body,x,y,angle,vx,vy,omega"},
-    {OPT_EVENTS, "events", 0, "FILE", CMD_ALL,
+    {OPT_EVENTS, "events", 0, "FILE", CMD_SIM,
      "write every impact, in time order:\n"
      "t,body_a,body_b,nx,ny,impulse,approach_speed"},
-    {OPT_MAX_OUTPUT, "max-output", 0, "MB", CMD_ALL,
+    {OPT_MAX_OUTPUT, "max-output", 0, "MB", CMD_SIM,
      "refuse a --trace or an SVG estimated larger than MB\n"
      "megabytes (default 300) unless --force"},
-    {OPT_FORCE, "force", 0, NULL, CMD_ALL,
+    {OPT_FORCE, "force", 0, NULL, CMD_SIM,
      "write outputs larger than --max-output (with a warning)"},
     {OPT_PROGRESS, "progress", 0, NULL, CMD_ALL,
      "show progress on stderr even when it is not a terminal\n"
@@ -89,6 +100,10 @@ static const cli_option options[] = {
      "cortex-m4f; cortex-m0) or a file of 'KIND WEIGHT'\n"
      "lines naming all six kinds ('#' comments)"},
     {OPT_JSON, "json", 0, NULL, CMD_PROFILE, "print one JSON object instead of the table"},
+    {OPT_CALIBRATION, "calibration", 0, "FILE", CMD_PROFILE,
+     "also predict what the run executes on a target, from\n"
+     "a calibration file (tools/embedded/cortex-m4f.cal:\n"
+     "instructions on a Cortex-M4F, docs/embedded.md)"},
     {OPT_OUTPUT, "output", 'o', "FILE", CMD_RENDER,
      "the animated SVG to write ('-': stdout)"},
     {OPT_PNG, "png", 0, "DIR", CMD_RENDER,
@@ -105,6 +120,10 @@ static const cli_option options[] = {
     {OPT_VIEW, "view", 0, "X0,Y0,X1,Y1", CMD_RENDER,
      "show this rectangle of the world (m) instead of\n"
      "fitting every body over the whole run"},
+    {OPT_MARGIN, "margin", 0, "PCT", CMD_LEAN,
+     "capacities: the worst case met plus PCT per cent\n"
+     "(default 25) plus --slack"},
+    {OPT_SLACK, "slack", 0, "N", CMD_LEAN, "capacities: plus N more (default 4)"},
     {OPT_HELP, "help", 'h', NULL, CMD_ALL, "show this help"},
 };
 #define OPTION_COUNT ((int)(sizeof options / sizeof options[0]))
@@ -112,7 +131,7 @@ static const cli_option options[] = {
 typedef struct sim_opts {
     unsigned cmd;
     const char *scene_path, *trace_path, *events_path, *output_path, *png_dir;
-    const char *method, *weights_arg;
+    const char *method, *weights_arg, *calibration_path;
     long steps;         /* -1: the scene's */
     double dt;          /* <= 0: the scene's */
     double max_output_mb;
@@ -121,13 +140,17 @@ typedef struct sim_opts {
     double fps;         /* <= 0: not given */
     long every;         /* 0: not given */
     long size;
+    long margin, slack; /* lean: capacity = need + need * margin / 100 + slack */
     int fixed_view;
     double view[4];     /* xmin, ymin, xmax, ymax */
 } sim_opts;
 
 static const char *cmd_name(unsigned cmd)
 {
-    return cmd == CMD_RUN ? "run" : cmd == CMD_PROFILE ? "profile" : "render";
+    return cmd == CMD_RUN       ? "run"
+           : cmd == CMD_PROFILE ? "profile"
+           : cmd == CMD_RENDER  ? "render"
+                                : "lean";
 }
 
 static void print_option_help(FILE *f, unsigned cmds)
@@ -162,6 +185,7 @@ static void print_usage(FILE *f)
     fputs("usage: carom run SCENE [options]\n"
           "       carom profile SCENE [--weights NAME|FILE] [--json] [options]\n"
           "       carom render SCENE -o FILE.svg [--png DIR] [options]\n"
+          "       carom lean SCENE [--margin PCT] [--slack N] [options] > carom_lean.h\n"
           "       carom --help | --version\n"
           "\n"
           "run: step a scene file (docs/scene-format.md; '-' reads stdin) and\n"
@@ -181,17 +205,30 @@ static void print_usage(FILE *f)
           "--view is given; the time is shown above it), and/or as PNG frames\n"
           "through gnuplot.\n"
           "\n"
+          "lean: run the scene once (twice if friction might act) and print a C\n"
+          "header of #defines for the smallest build of carom that gives the same\n"
+          "results on it: every capability switch of carom_config.h on or off,\n"
+          "each with the reason, and the capacities of carom_world_def (bodies,\n"
+          "pairs, contacts, impacts and events per step: the worst case met plus\n"
+          "--margin and --slack) with the world buffer they need. Build the library\n"
+          "and the program with it: cc -include carom_lean.h ... (make lean\n"
+          "SCENE=FILE does it and checks the results are the same).\n"
+          "\n"
           "Scene files may end lines with LF, CR LF or CR, and may start with a\n"
           "UTF-8 byte-order mark.\n"
           "\n"
           "Options are written --opt VALUE or --opt=VALUE.\n"
           "\n"
-          "options of run, profile and render:\n", f);
+          "options of every command:\n", f);
     print_option_help(f, CMD_ALL);
+    fputs("options of run, profile and render:\n", f);
+    print_option_help(f, CMD_SIM);
     fputs("options of profile:\n", f);
     print_option_help(f, CMD_PROFILE);
     fputs("options of render (at least one of -o and --png):\n", f);
     print_option_help(f, CMD_RENDER);
+    fputs("options of lean:\n", f);
+    print_option_help(f, CMD_LEAN);
     fputs("\n"
           "Progress (step, share done, simulated time) goes to stderr when it is\n"
           "a terminal, on one line that is erased when the run ends.\n"
@@ -264,6 +301,7 @@ static int apply_option(sim_opts *o, const cli_option *opt, const char *v)
     case OPT_NO_PROGRESS: o->progress = 0; return 0;
     case OPT_WEIGHTS: o->weights_arg = v; return 0;
     case OPT_JSON: o->json = 1; return 0;
+    case OPT_CALIBRATION: o->calibration_path = v; return 0;
     case OPT_OUTPUT: o->output_path = v; return 0;
     case OPT_PNG: o->png_dir = v; return 0;
     case OPT_FPS:
@@ -273,6 +311,10 @@ static int apply_option(sim_opts *o, const cli_option *opt, const char *v)
     case OPT_IMPACTS: o->impacts = 1; return 0;
     case OPT_SIZE:
         return parse_long_in("size", v, 16, 16384, &o->size);
+    case OPT_MARGIN:
+        return parse_long_in("margin", v, 0, 1000, &o->margin);
+    case OPT_SLACK:
+        return parse_long_in("slack", v, 0, 1000000, &o->slack);
     case OPT_VIEW: {
         char extra;
         if (sscanf(v, "%lf,%lf,%lf,%lf%c", &o->view[0], &o->view[1], &o->view[2],
@@ -297,7 +339,9 @@ static const char *cmds_list(unsigned cmds)
     case CMD_RUN: return "run";
     case CMD_PROFILE: return "profile";
     case CMD_RENDER: return "render";
-    default: return "run, profile and render";
+    case CMD_LEAN: return "lean";
+    case CMD_SIM: return "run, profile and render";
+    default: return "every command";
     }
 }
 
@@ -313,6 +357,8 @@ static int parse_options(unsigned cmd, int argc, char **argv, sim_opts *o)
     o->progress = -1;
     o->weights_arg = "seed";
     o->size = DEFAULT_SIZE;
+    o->margin = LEAN_DEFAULT_MARGIN;
+    o->slack = LEAN_DEFAULT_SLACK;
     for (i = 0; i < argc; ++i) {
         const char *a = argv[i], *value = NULL;
         const cli_option *opt = NULL;
@@ -568,6 +614,162 @@ static int load_weights(const char *arg, carom_op_weights *out)
     return 0;
 }
 
+/* What `profile` adds up besides the op counts, from carom_world_get_stats
+ * after every step: the work the op counts do not see scales with them. */
+typedef struct run_sums {
+    double awake_body_steps; /* bodies simulated, summed over the steps */
+    double contact_steps;    /* contacts, summed over the steps */
+} run_sums;
+
+/* A calibration (--calibration FILE, written by make embedded-calibrate):
+ * per phase, and for the step outside the phases ("step"), instructions =
+ * per_op x the phase's operations (step: all of them) + per_step x steps +
+ * per_body_step x body-steps + per_awake_body_step x awake body-steps +
+ * per_contact_step x contact-steps; a phase that counted no operation adds
+ * nothing. */
+#define CAL_ROWS (CAROM_PHASE_COUNT + 1)
+#define CAL_TERMS 5
+typedef struct calibration {
+    char name[64], unit[64];
+    double c[CAL_ROWS][CAL_TERMS];
+} calibration;
+
+static const char *cal_row_name(int row)
+{
+    return row < CAROM_PHASE_COUNT ? carom_phase_name((carom_phase)row) : "step";
+}
+
+static int load_calibration(const char *path, calibration *cal)
+{
+    FILE *f = fopen(path, "r");
+    char line[512];
+    int lineno = 0, seen[CAL_ROWS] = {0}, header = 0, row;
+    if (!f) {
+        fprintf(stderr, "carom: --calibration: cannot read '%s': %s\n", path, strerror(errno));
+        return -1;
+    }
+    memset(cal, 0, sizeof *cal);
+    strcpy(cal->name, "calibration");
+    strcpy(cal->unit, "units");
+    while (fgets(line, sizeof line, f)) {
+        char word[64], rest[64], extra[2];
+        double v[CAL_TERMS];
+        char *hash = strchr(line, '#');
+        int n;
+        ++lineno;
+        if (hash)
+            *hash = '\0';
+        n = sscanf(line, "%63s", word);
+        if (n <= 0)
+            continue;
+        if (!header) {
+            if (strcmp(word, "carom-calibration") != 0 ||
+                sscanf(line, "%*s %63s %1s", rest, extra) != 1 || strcmp(rest, "1") != 0) {
+                fprintf(stderr, "carom: %s:%d: not a calibration file (want "
+                                "'carom-calibration 1' first)\n", path, lineno);
+                fclose(f);
+                return -1;
+            }
+            header = 1;
+            continue;
+        }
+        if (strcmp(word, "name") == 0 || strcmp(word, "unit") == 0) {
+            if (sscanf(line, "%*s %63s %1s", rest, extra) != 1) {
+                fprintf(stderr, "carom: %s:%d: want '%s WORD'\n", path, lineno, word);
+                fclose(f);
+                return -1;
+            }
+            strcpy(word[0] == 'n' ? cal->name : cal->unit, rest);
+            continue;
+        }
+        for (row = 0; row < CAL_ROWS; ++row)
+            if (strcmp(word, cal_row_name(row)) == 0)
+                break;
+        if (row == CAL_ROWS) {
+            fprintf(stderr, "carom: %s:%d: unknown row '%s' (a phase, or step)\n", path,
+                    lineno, word);
+            fclose(f);
+            return -1;
+        }
+        if (sscanf(line, "%*s %lf %lf %lf %lf %lf %1s", &v[0], &v[1], &v[2], &v[3], &v[4],
+                   extra) != CAL_TERMS) {
+            fprintf(stderr, "carom: %s:%d: want '%s' and %d numbers\n", path, lineno, word,
+                    CAL_TERMS);
+            fclose(f);
+            return -1;
+        }
+        if (seen[row]++) {
+            fprintf(stderr, "carom: %s:%d: '%s' given twice\n", path, lineno, word);
+            fclose(f);
+            return -1;
+        }
+        for (n = 0; n < CAL_TERMS; ++n) {
+            if (!isfinite(v[n]) || v[n] < 0.0 || v[n] > 1e12) {
+                fprintf(stderr, "carom: %s:%d: numbers must be finite and >= 0\n", path, lineno);
+                fclose(f);
+                return -1;
+            }
+            cal->c[row][n] = v[n];
+        }
+    }
+    fclose(f);
+    if (!header) {
+        fprintf(stderr, "carom: %s: empty calibration file\n", path);
+        return -1;
+    }
+    for (row = 0; row < CAL_ROWS; ++row) {
+        if (!seen[row]) {
+            fprintf(stderr, "carom: %s: no row for '%s'\n", path, cal_row_name(row));
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* The calibrated prediction of each row (CAL_ROWS of them); returns the
+ * total. */
+static double calibrated(const calibration *cal, const carom_profile *p,
+                         const run_sums *sums, double out[CAL_ROWS])
+{
+    double total = 0.0, all_ops = 0.0;
+    int row, k;
+    for (row = 0; row < CAROM_PHASE_COUNT; ++row)
+        for (k = 0; k < CAROM_OP_COUNT; ++k)
+            all_ops += (double)p->ops[row][k];
+    for (row = 0; row < CAL_ROWS; ++row) {
+        double ops = 0.0, x;
+        if (row < CAROM_PHASE_COUNT) {
+            for (k = 0; k < CAROM_OP_COUNT; ++k)
+                ops += (double)p->ops[row][k];
+        } else {
+            ops = all_ops;
+        }
+        x = row < CAROM_PHASE_COUNT && ops == 0.0
+                ? 0.0
+                : cal->c[row][0] * ops + cal->c[row][1] * (double)p->steps +
+                      cal->c[row][2] * (double)p->body_steps +
+                      cal->c[row][3] * sums->awake_body_steps +
+                      cal->c[row][4] * sums->contact_steps;
+        out[row] = x;
+        total += x;
+    }
+    return total;
+}
+
+static void print_calibrated_table(const calibration *cal, const char *path,
+                                   const carom_profile *p, const run_sums *sums)
+{
+    double rows[CAL_ROWS], total = calibrated(cal, p, sums, rows);
+    int row;
+    printf("\ncalibrated (%s, %s): predicted %s\n", cal->name, path, cal->unit);
+    for (row = 0; row < CAL_ROWS; ++row)
+        printf("%-19s %14.0f %5.1f%%\n",
+               row < CAROM_PHASE_COUNT ? cal_row_name(row) : "step (no phase)", rows[row],
+               total > 0.0 ? 100.0 * rows[row] / total : 0.0);
+    printf("%-19s %14.0f %5.1f%%\n", "total", total, 100.0);
+    printf("%s per step %14.1f\n", cal->unit, p->steps ? total / (double)p->steps : 0.0);
+}
+
 /* Costs are summed in double here: counts reach billions. */
 static double phase_cost(const carom_profile *p, const carom_op_weights *wt, int ph)
 {
@@ -580,7 +782,7 @@ static double phase_cost(const carom_profile *p, const carom_op_weights *wt, int
 
 static void print_profile_table(const carom_profile *p, const carom_op_weights *wt,
                                 const char *wname, const char *path,
-                                carom_method method, int bodies)
+                                carom_method method, int bodies, const run_sums *sums)
 {
     int ph, k;
     double total = 0.0, impulse;
@@ -590,6 +792,8 @@ static void print_profile_table(const carom_profile *p, const carom_op_weights *
     printf("scene %s: method %s, %lu steps, %d bodies, %lu body-steps, %lu impacts\n",
            path, carom_method_name(method), (unsigned long)p->steps, bodies,
            (unsigned long)p->body_steps, (unsigned long)p->impacts);
+    printf("awake body-steps %.0f, contact-steps %.0f\n", sums->awake_body_steps,
+           sums->contact_steps);
     printf("weights %s:", wname);
     for (k = 0; k < CAROM_OP_COUNT; ++k)
         printf(" %s %g", carom_op_name((carom_op)k), (double)wt->w[k]);
@@ -635,7 +839,8 @@ static void put_json_string(const char *s)
 }
 
 static void print_profile_json(const carom_profile *p, const carom_op_weights *wt,
-                               const char *wname, int bodies, const char *partial)
+                               const char *wname, int bodies, const char *partial,
+                               const run_sums *sums, const calibration *cal)
 {
     int ph, k;
     double total = 0.0;
@@ -650,6 +855,8 @@ static void print_profile_json(const carom_profile *p, const carom_op_weights *w
     printf("\"steps\": %lu, \"bodies\": %d, \"impacts\": %lu, \"body_steps\": %lu, ",
            (unsigned long)p->steps, bodies, (unsigned long)p->impacts,
            (unsigned long)p->body_steps);
+    printf("\"awake_body_steps\": %.0f, \"contact_steps\": %.0f, ",
+           sums->awake_body_steps, sums->contact_steps);
     printf("\"weights_name\": ");
     put_json_string(wname);
     printf(", \"weights\": {");
@@ -664,7 +871,19 @@ static void print_profile_json(const carom_profile *p, const carom_op_weights *w
                    (unsigned long)p->ops[ph][k]);
         printf("}");
     }
-    printf("}, \"total_cost\": %.17g}\n", total);
+    printf("}, \"total_cost\": %.17g", total);
+    if (cal) {
+        double rows[CAL_ROWS], sum = calibrated(cal, p, sums, rows);
+        printf(", \"calibrated\": {\"name\": ");
+        put_json_string(cal->name);
+        printf(", \"unit\": ");
+        put_json_string(cal->unit);
+        printf(", \"rows\": {");
+        for (ph = 0; ph < CAL_ROWS; ++ph)
+            printf("%s\"%s\": %.17g", ph ? ", " : "", cal_row_name(ph), rows[ph]);
+        printf("}, \"total\": %.17g}", sum);
+    }
+    printf("}\n");
 }
 
 /* '-' is stdout only where allowed (render -o); elsewhere a file named -. */
@@ -894,6 +1113,25 @@ static void recorder_impacts(recorder *r, const carom_world *w)
 
 /* ---- the commands ---------------------------------------------------------- */
 
+#ifdef CAROM_LEAN_MAX_BODIES
+/* A lean build (make lean, with the header of `carom lean`): worlds take the
+ * header's capacities wherever the scene leaves them at their default and
+ * has no more bodies than the header's, so its runs prove they suffice. */
+static void apply_lean_capacities(scene *s)
+{
+    if (s->body_count > CAROM_LEAN_MAX_BODIES)
+        return;
+    if (s->world.max_pairs == 0)
+        s->world.max_pairs = CAROM_LEAN_MAX_PAIRS;
+    if (s->world.max_contacts == 0)
+        s->world.max_contacts = CAROM_LEAN_MAX_CONTACTS;
+    if (s->world.max_impacts == 0)
+        s->world.max_impacts = CAROM_LEAN_MAX_IMPACTS;
+    if (s->world.max_events == 0)
+        s->world.max_events = CAROM_LEAN_MAX_EVENTS;
+}
+#endif
+
 static int cmd_sim(unsigned cmd, int argc, char **argv)
 {
     sim_opts o;
@@ -906,6 +1144,8 @@ static int cmd_sim(unsigned cmd, int argc, char **argv)
     FILE *trace = NULL, *events = NULL, *svg = NULL;
     carom_op_weights weights;
     carom_profile prof;
+    run_sums sums = {0.0, 0.0};
+    calibration cal;
     recorder rec;
     progress prog;
     carom_status st = CAROM_OK;
@@ -918,6 +1158,8 @@ static int cmd_sim(unsigned cmd, int argc, char **argv)
     partial[0] = '\0';
     memset(&rec, 0, sizeof rec);
     if (profile && load_weights(o.weights_arg, &weights) != 0)
+        return EXIT_USAGE;
+    if (profile && o.calibration_path && load_calibration(o.calibration_path, &cal) != 0)
         return EXIT_USAGE;
     if (render && o.png_dir && !render_have_gnuplot()) {
         fprintf(stderr, "carom: --png needs gnuplot, which is not on PATH "
@@ -935,6 +1177,9 @@ static int cmd_sim(unsigned cmd, int argc, char **argv)
         s.world.dt = (float)o.dt;
     if (o.method)
         carom_method_from_name(o.method, &s.world.method);
+#ifdef CAROM_LEAN_MAX_BODIES
+    apply_lean_capacities(&s);
+#endif
     if (scene_build_world(&s, &w, &mem, err, sizeof err) != 0) {
         fprintf(stderr, "carom: %s: %s\n", o.scene_path, err);
         scene_free(&s);
@@ -1015,6 +1260,12 @@ static int cmd_sim(unsigned cmd, int argc, char **argv)
         if (st != CAROM_OK)
             break;
         dropped += carom_world_events_dropped(w);
+        if (profile) {
+            carom_stats stats;
+            carom_world_get_stats(w, &stats);
+            sums.awake_body_steps += (double)stats.awake_bodies;
+            sums.contact_steps += (double)stats.contacts;
+        }
         if (events) {
             int n, e;
             const carom_event *ev = carom_world_events(w, &n);
@@ -1068,12 +1319,15 @@ static int cmd_sim(unsigned cmd, int argc, char **argv)
     if (profile) {
         if (o.json) {
             print_profile_json(&prof, &weights, o.weights_arg,
-                               carom_world_body_count(w), partial[0] ? partial : NULL);
+                               carom_world_body_count(w), partial[0] ? partial : NULL,
+                               &sums, o.calibration_path ? &cal : NULL);
         } else {
             if (partial[0])
                 printf("# partial: %s\n", partial);
             print_profile_table(&prof, &weights, o.weights_arg, o.scene_path,
-                                s.world.method, carom_world_body_count(w));
+                                s.world.method, carom_world_body_count(w), &sums);
+            if (o.calibration_path)
+                print_calibrated_table(&cal, o.calibration_path, &prof, &sums);
         }
     } else if (render) {
         render_movie m;
@@ -1132,6 +1386,662 @@ done:
     return rc;
 }
 
+/* ---- lean: the smallest build that gives a scene's results ------------------ */
+
+/* Shape pairs whose meeting `lean` records. */
+enum { MEET_CC, MEET_CP, MEET_PP, MEET_KINDS };
+static const char *const meet_names[MEET_KINDS] = {
+    "circle-circle", "circle-polygon", "polygon-polygon"
+};
+
+/* What one run of the scene needed. Steps are counted from 1 (0: the
+ * start); -1: never. */
+typedef struct lean_need {
+    long steps;
+    int bodies, circles, polygons, dynamic_polygons, kinematic;
+    int first_polygon, first_dynamic_polygon, first_kinematic;
+    int max_vertices;        /* most vertices of a polygon (0: none) */
+    int forced;              /* first body with a force or torque, or -1 */
+    long spin_step;          /* first angular velocity or turn seen */
+    int spin_body;
+    long sleep_step;         /* first body asleep at a step's end */
+    int sleep_body;
+    int friction_pair;       /* two bodies that can touch (not both static)
+                                both have friction > 0 */
+    long friction_step;      /* first step whose state differs when every
+                                friction is 0 (-1: none; not run if no
+                                friction_pair) */
+    long met_step[MEET_KINDS]; /* first step a pair of that kind came
+                                  within reach */
+    long lever_step;         /* first step a moving polygon came within
+                                reach of another body */
+    int lever_a, lever_b;
+    int met_a[MEET_KINDS], met_b[MEET_KINDS];
+    int events;              /* most impacts of a step: recorded + dropped */
+    long dropped;            /* impacts not recorded, whole run */
+    carom_stats stats;
+    double slop;             /* linear slop at the start, m */
+} lean_need;
+
+/* A body's motion over one step, for the reach test. */
+typedef struct lean_mover {
+    double x0, y0, x1, y1; /* centre of mass at the step's start and end */
+    double r;              /* bounding radius about the centre of mass */
+    double reach;          /* how far it can stray from the segment */
+    double lo_x, hi_x, lo_y, hi_y;
+    int kind;              /* 0 circle, 1 polygon */
+    int moving;            /* not static */
+} lean_mover;
+
+static const lean_mover *lean_sort_base;
+
+static int lean_cmp_lo(const void *a, const void *b)
+{
+    double x = lean_sort_base[*(const int *)a].lo_x;
+    double y = lean_sort_base[*(const int *)b].lo_x;
+    return x < y ? -1 : x > y ? 1 : *(const int *)a - *(const int *)b;
+}
+
+static double clamp01(double t) { return t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t; }
+
+/* Squared distance between segments p0-p1 and q0-q1 (closest points of
+ * two segments, as in Ericson's Real-Time Collision Detection 5.1.9). */
+static double seg_dist2(double p0x, double p0y, double p1x, double p1y,
+                        double q0x, double q0y, double q1x, double q1y)
+{
+    double d1x = p1x - p0x, d1y = p1y - p0y, d2x = q1x - q0x, d2y = q1y - q0y;
+    double rx = p0x - q0x, ry = p0y - q0y;
+    double a = d1x * d1x + d1y * d1y, e = d2x * d2x + d2y * d2y;
+    double f = d2x * rx + d2y * ry, s, t, dx, dy;
+    if (a <= 1e-300 && e <= 1e-300) {
+        s = t = 0.0;
+    } else if (a <= 1e-300) {
+        s = 0.0;
+        t = clamp01(f / e);
+    } else {
+        double c = d1x * rx + d1y * ry;
+        if (e <= 1e-300) {
+            t = 0.0;
+            s = clamp01(-c / a);
+        } else {
+            double b = d1x * d2x + d1y * d2y, den = a * e - b * b;
+            s = den > 0.0 ? clamp01((b * f - c * e) / den) : 0.0;
+            t = (b * s + f) / e;
+            if (t < 0.0) {
+                t = 0.0;
+                s = clamp01(-c / a);
+            } else if (t > 1.0) {
+                t = 1.0;
+                s = clamp01((b - c) / a);
+            }
+        }
+    }
+    dx = p0x + d1x * s - (q0x + d2x * t);
+    dy = p0y + d1y * s - (q0y + d2y * t);
+    return dx * dx + dy * dy;
+}
+
+/* Bounding radius of body i about its centre of mass. */
+static double lean_radius(const scene *s, int i, const carom_body_state *st)
+{
+    const carom_body_def *d = &s->bodies[i].def;
+    double cx, cy, lx, ly, r = 0.0, c = st->rotation.c, sn = st->rotation.s;
+    int k;
+    if (d->shape == CAROM_SHAPE_CIRCLE)
+        return (double)d->radius;
+    /* the centre in the body frame: R^T (center - position) */
+    cx = (double)st->center.x - (double)st->position.x;
+    cy = (double)st->center.y - (double)st->position.y;
+    lx = c * cx + sn * cy;
+    ly = -sn * cx + c * cy;
+    for (k = 0; k < d->vertex_count; ++k) {
+        double dx = (double)d->vertices[k].x - lx, dy = (double)d->vertices[k].y - ly;
+        double q = sqrt(dx * dx + dy * dy);
+        if (q > r)
+            r = q;
+    }
+    return r;
+}
+
+/* Mark the shape pairs that may have met during the step just taken:
+ * bounding circles swept along their centres' paths, widened by each
+ * body's speed times dt (a bounce inside the step), |g| dt^2 and ten
+ * slops (the contact reach). Generous on purpose: a false "met" only
+ * keeps code that was not needed. */
+static void lean_reach(lean_need *n, lean_mover *m, int *order, int count, long step)
+{
+    int i, j;
+    for (i = 0; i < count; ++i) {
+        lean_mover *a = &m[i];
+        double w = a->r * 1.05 + a->reach;
+        a->lo_x = (a->x0 < a->x1 ? a->x0 : a->x1) - w;
+        a->hi_x = (a->x0 > a->x1 ? a->x0 : a->x1) + w;
+        a->lo_y = (a->y0 < a->y1 ? a->y0 : a->y1) - w;
+        a->hi_y = (a->y0 > a->y1 ? a->y0 : a->y1) + w;
+        order[i] = i;
+    }
+    lean_sort_base = m;
+    qsort(order, (size_t)count, sizeof *order, lean_cmp_lo);
+    for (i = 0; i < count; ++i) {
+        const lean_mover *a = &m[order[i]];
+        for (j = i + 1; j < count && m[order[j]].lo_x <= a->hi_x; ++j) {
+            const lean_mover *b = &m[order[j]];
+            double lim;
+            int kind = a->kind + b->kind;
+            int lever = (a->moving && a->kind) || (b->moving && b->kind);
+            if ((!a->moving && !b->moving) ||
+                (n->met_step[kind] >= 0 && (!lever || n->lever_step >= 0)) ||
+                b->lo_y > a->hi_y || a->lo_y > b->hi_y)
+                continue;
+            lim = 1.05 * (a->r + b->r) + a->reach + b->reach;
+            if (seg_dist2(a->x0, a->y0, a->x1, a->y1, b->x0, b->y0, b->x1, b->y1) <=
+                lim * lim) {
+                int lo = order[i] < order[j] ? order[i] : order[j];
+                int hi = order[i] < order[j] ? order[j] : order[i];
+                if (n->met_step[kind] < 0) {
+                    n->met_step[kind] = step;
+                    n->met_a[kind] = lo;
+                    n->met_b[kind] = hi;
+                }
+                if (lever && n->lever_step < 0) {
+                    n->lever_step = step;
+                    n->lever_a = lo;
+                    n->lever_b = hi;
+                }
+            }
+        }
+    }
+}
+
+/* Same bits (positions, rotations, velocities) in two worlds? */
+static int lean_same_state(const carom_world *a, const carom_world *b, int bodies)
+{
+    int i;
+    for (i = 0; i < bodies; ++i) {
+        carom_body_state x, y;
+        carom_body_get_state(a, i, &x);
+        carom_body_get_state(b, i, &y);
+        if (memcmp(&x, &y, sizeof x) != 0)
+            return 0;
+    }
+    return 1;
+}
+
+/* Run the scene and record what it needs. Returns 0, or an exit status
+ * after a message. */
+static int lean_measure(const char *path, scene *s, const sim_opts *o, lean_need *n)
+{
+    carom_world *w = NULL, *wf = NULL;
+    void *mem = NULL, *memf = NULL;
+    lean_mover *mv = NULL;
+    int *order = NULL;
+    char err[512];
+    double g;
+    long k;
+    int i, rc = 0, nf_moving = 0, nf = 0;
+    carom_status st = CAROM_OK;
+    carom_tolerances tol;
+    progress prog;
+
+    memset(n, 0, sizeof *n);
+    n->steps = s->steps;
+    n->bodies = s->body_count;
+    n->first_polygon = n->first_dynamic_polygon = n->first_kinematic = -1;
+    n->forced = n->spin_body = n->sleep_body = -1;
+    n->spin_step = n->sleep_step = n->friction_step = -1;
+    for (i = 0; i < MEET_KINDS; ++i)
+        n->met_step[i] = -1;
+    n->lever_step = -1;
+    for (i = 0; i < s->body_count; ++i) {
+        const carom_body_def *d = &s->bodies[i].def;
+        if (d->shape == CAROM_SHAPE_CIRCLE) {
+            n->circles++;
+        } else {
+            if (n->polygons++ == 0)
+                n->first_polygon = i;
+            if (d->vertex_count > n->max_vertices)
+                n->max_vertices = d->vertex_count;
+            if (d->type != CAROM_BODY_STATIC && n->dynamic_polygons++ == 0)
+                n->first_dynamic_polygon = i;
+        }
+        if (d->type == CAROM_BODY_KINEMATIC && n->kinematic++ == 0)
+            n->first_kinematic = i;
+        if (n->forced < 0 && (d->force.x != 0.0f || d->force.y != 0.0f || d->torque != 0.0f))
+            n->forced = i;
+        if (n->spin_step < 0 && (d->angular_velocity != 0.0f || d->torque != 0.0f)) {
+            n->spin_step = 0;
+            n->spin_body = i;
+        }
+        if (d->friction > 0.0f) {
+            nf++;
+            nf_moving += d->type != CAROM_BODY_STATIC;
+        }
+    }
+    /* friction acts only between two bodies that both have some, one of
+     * which can move (two static bodies never pair) */
+    n->friction_pair = nf_moving >= 1 && nf >= 2;
+
+    if (scene_build_world(s, &w, &mem, err, sizeof err) != 0) {
+        fprintf(stderr, "carom: %s: %s\n", path, err);
+        return EXIT_USAGE;
+    }
+    if (n->friction_pair) {
+        scene f = *s;
+        f.bodies = (scene_body *)malloc((size_t)(s->body_count ? s->body_count : 1) *
+                                        sizeof *f.bodies);
+        if (!f.bodies) {
+            fprintf(stderr, "carom: out of memory\n");
+            rc = EXIT_USAGE;
+            goto done;
+        }
+        memcpy(f.bodies, s->bodies, (size_t)s->body_count * sizeof *f.bodies);
+        for (i = 0; i < s->body_count; ++i)
+            f.bodies[i].def.friction = 0.0f;
+        i = scene_build_world(&f, &wf, &memf, err, sizeof err);
+        free(f.bodies);
+        if (i != 0) {
+            fprintf(stderr, "carom: %s: %s\n", path, err);
+            rc = EXIT_USAGE;
+            goto done;
+        }
+    }
+    mv = (lean_mover *)calloc((size_t)(s->body_count ? s->body_count : 1), sizeof *mv);
+    order = (int *)calloc((size_t)(s->body_count ? s->body_count : 1), sizeof *order);
+    if (!mv || !order) {
+        fprintf(stderr, "carom: out of memory for %d bodies\n", s->body_count);
+        rc = EXIT_USAGE;
+        goto done;
+    }
+    carom_world_get_tolerances(w, &tol);
+    n->slop = (double)tol.linear_slop;
+    g = sqrt((double)s->world.gravity.x * (double)s->world.gravity.x +
+             (double)s->world.gravity.y * (double)s->world.gravity.y);
+    for (i = 0; i < s->body_count; ++i) {
+        carom_body_state b;
+        carom_body_get_state(w, i, &b);
+        mv[i].x1 = (double)b.center.x;
+        mv[i].y1 = (double)b.center.y;
+        mv[i].r = lean_radius(s, i, &b);
+        mv[i].kind = s->bodies[i].def.shape == CAROM_SHAPE_CIRCLE ? 0 : 1;
+        mv[i].moving = s->bodies[i].def.type != CAROM_BODY_STATIC;
+    }
+
+    progress_start(&prog, o->progress, s->steps);
+    for (k = 0; k < s->steps; ++k) {
+        int count, dropped;
+        double dt = (double)s->world.dt;
+        for (i = 0; i < s->body_count; ++i) {
+            carom_body_state b;
+            carom_body_get_state(w, i, &b);
+            mv[i].x0 = mv[i].x1;
+            mv[i].y0 = mv[i].y1;
+            mv[i].reach = sqrt((double)b.velocity.x * (double)b.velocity.x +
+                               (double)b.velocity.y * (double)b.velocity.y) * dt;
+        }
+        st = carom_world_step(w);
+        if (st != CAROM_OK)
+            break;
+        carom_world_events(w, &count);
+        dropped = carom_world_events_dropped(w);
+        n->dropped += dropped;
+        if (count + dropped > n->events)
+            n->events = count + dropped;
+        for (i = 0; i < s->body_count; ++i) {
+            carom_body_state b;
+            double sp;
+            carom_body_get_state(w, i, &b);
+            if (n->spin_step < 0 && (b.angular_velocity != 0.0f ||
+                                     b.rotation.c != s->bodies[i].def.rotation.c ||
+                                     b.rotation.s != s->bodies[i].def.rotation.s)) {
+                n->spin_step = k + 1;
+                n->spin_body = i;
+            }
+            if (n->sleep_step < 0 && !carom_body_is_awake(w, i) &&
+                s->bodies[i].def.type == CAROM_BODY_DYNAMIC) {
+                n->sleep_step = k + 1;
+                n->sleep_body = i;
+            }
+            mv[i].x1 = (double)b.center.x;
+            mv[i].y1 = (double)b.center.y;
+            sp = sqrt((double)b.velocity.x * (double)b.velocity.x +
+                      (double)b.velocity.y * (double)b.velocity.y) * dt;
+            if (sp > mv[i].reach)
+                mv[i].reach = sp;
+            mv[i].reach += g * dt * dt + 5.0 * n->slop;
+            if (!mv[i].moving)
+                mv[i].reach = 5.0 * n->slop;
+        }
+        if (n->met_step[MEET_CC] < 0 || n->met_step[MEET_CP] < 0 ||
+            n->met_step[MEET_PP] < 0 || (n->lever_step < 0 && n->dynamic_polygons > 0))
+            lean_reach(n, mv, order, s->body_count, k + 1);
+        if (wf) {
+            carom_status sf = carom_world_step(wf);
+            if (sf != CAROM_OK || !lean_same_state(w, wf, s->body_count)) {
+                n->friction_step = k + 1;
+                free(memf);
+                memf = NULL;
+                wf = NULL;
+            }
+        }
+        progress_update(&prog, k + 1, (double)carom_world_time(w));
+    }
+    progress_end(&prog, carom_world_step_count(w), (double)carom_world_time(w));
+    if (st != CAROM_OK) {
+        fprintf(stderr, "carom: %s: step %ld (t = %.9g s): %s; lean measures a "
+                        "scene that runs to its end\n", path, k + 1,
+                (double)carom_world_time(w), carom_status_string(st));
+        rc = EXIT_SIM;
+        goto done;
+    }
+    carom_world_get_stats(w, &n->stats);
+done:
+    free(mv);
+    free(order);
+    free(mem);
+    free(memf);
+    return rc;
+}
+
+/* need + need * margin / 100 (rounded up) + slack, at least 1 */
+static long lean_cap(long need, const sim_opts *o)
+{
+    long c = need + (need * o->margin + 99) / 100 + o->slack;
+    return c < 1 ? 1 : c > (1L << 26) ? (1L << 26) : c;
+}
+
+static void lean_switch(const char *name, int on, const char *why, ...)
+{
+    va_list ap;
+    printf("#define CAROM_ENABLE_%s %d /* %s: ", name, on, on ? "on" : "off");
+    va_start(ap, why);
+    vprintf(why, ap);
+    va_end(ap);
+    printf(" */\n");
+}
+
+static void lean_body_ref(char *buf, size_t len, const scene *s, int i)
+{
+    snprintf(buf, len, "body %d (line %d)", i, s->bodies[i].line);
+}
+
+static int cmd_lean(int argc, char **argv)
+{
+    sim_opts o;
+    scene s;
+    lean_need n;
+    char err[512], a[64], b[64];
+    carom_world_def def;
+    long pairs, contacts, impacts, events, default_impacts;
+    size_t bytes, default_bytes;
+    const char *p;
+    int rc, polygons_on, dyn_on, pp_on, spin_on, friction_on, events_on, sleep_on;
+
+    rc = parse_options(CMD_LEAN, argc, argv, &o);
+    if (rc >= 0)
+        return rc;
+    if (read_scene(o.scene_path, &s, err, sizeof err) != 0) {
+        fprintf(stderr, "carom: %s\n", err);
+        return EXIT_USAGE;
+    }
+    if (o.steps >= 0)
+        s.steps = o.steps;
+    if (o.dt > 0.0)
+        s.world.dt = (float)o.dt;
+    if (o.method)
+        carom_method_from_name(o.method, &s.world.method);
+    if (s.body_count == 0) {
+        fprintf(stderr, "carom: %s: no bodies: nothing to measure\n", o.scene_path);
+        scene_free(&s);
+        return EXIT_USAGE;
+    }
+    rc = lean_measure(o.scene_path, &s, &o, &n);
+    if (rc != 0) {
+        scene_free(&s);
+        return rc;
+    }
+
+    /* capacities */
+    def = s.world;
+    def.max_bodies = s.body_count;
+    default_bytes = carom_world_buffer_size(&def);
+    default_impacts = s.world.max_impacts > 0
+                          ? s.world.max_impacts
+                          : ((long)CAROM_DEFAULT_IMPACTS_PER_BODY * s.body_count > CAROM_MIN_IMPACTS
+                                 ? (long)CAROM_DEFAULT_IMPACTS_PER_BODY * s.body_count
+                                 : CAROM_MIN_IMPACTS);
+    pairs = lean_cap(n.stats.max_pairs_used, &o);
+    contacts = lean_cap(n.stats.max_contacts_used, &o);
+    /* past max_impacts the rest of a step's contacts are solved together:
+     * a run that met the budget must keep it as it was */
+    impacts = n.stats.budget_steps > 0 ? default_impacts
+                                       : lean_cap(n.stats.max_impacts_used, &o);
+    events = lean_cap(n.events, &o);
+    def.max_pairs = (int)pairs;
+    def.max_contacts = (int)contacts;
+    def.max_impacts = (int)impacts;
+    def.max_events = (int)events;
+    bytes = carom_world_buffer_size(&def);
+
+    polygons_on = n.polygons > 0;
+    dyn_on = n.dynamic_polygons > 0;
+    pp_on = n.met_step[MEET_PP] >= 0;
+    spin_on = n.spin_step >= 0 || n.lever_step >= 0;
+    friction_on = n.friction_step >= 0;
+    events_on = s.world.method != CAROM_METHOD_DISCRETE;
+    sleep_on = n.sleep_step >= 0;
+
+    printf("/*\n * carom_lean.h -- the smallest build of carom %s that gives the same\n"
+           " * results on ", carom_version());
+    for (p = o.scene_path; *p; ++p)
+        putchar(*p == '*' && p[1] == '/' ? '+' : (unsigned char)*p < 0x20 ? '?' : *p);
+    printf("\n * (%d bodies, method %s, %ld steps of %.9g s). Written by `carom lean`,\n"
+           " * which ran the scene to see what it uses.\n",
+           s.body_count, carom_method_name(s.world.method), s.steps, (double)s.world.dt);
+    printf(" *\n * Use the same header for the library and the program: compile both with\n"
+           " * -include carom_lean.h (or include it before carom.h everywhere and\n"
+           " * before compiling src/), and size the world from the capacities below:\n"
+           " *\n"
+           " *     carom_world_def wd = carom_default_world_def();\n"
+           " *     static unsigned char mem[CAROM_LEAN_WORLD_BYTES];\n"
+           " *     CAROM_LEAN_SET_CAPACITIES(&wd);\n"
+           " *     carom_world_init(&w, &wd, mem, sizeof mem);\n"
+           " *\n"
+           " * A switch that is off makes the library refuse what it removed\n"
+           " * (CAROM_ERR_DISABLED), so a scene that needs more fails loudly.\n */\n");
+    printf("#ifndef CAROM_LEAN_H\n#define CAROM_LEAN_H\n\n");
+    printf("#define CAROM_LEAN_SCENE \"");
+    for (p = o.scene_path; *p; ++p) {
+        if (*p == '"' || *p == '\\')
+            putchar('\\');
+        if ((unsigned char)*p >= 0x20)
+            putchar(*p);
+    }
+    printf("\"\n\n/* ---- capabilities (include/carom_config.h) ---- */\n\n");
+
+    if (polygons_on) {
+        lean_body_ref(a, sizeof a, &s, n.first_polygon);
+        lean_switch("POLYGONS", 1, "%d polygon%s, the first is %s", n.polygons,
+                    n.polygons == 1 ? "" : "s", a);
+    } else {
+        lean_switch("POLYGONS", 0, "every body is a circle");
+    }
+    if (dyn_on) {
+        lean_body_ref(a, sizeof a, &s, n.first_dynamic_polygon);
+        lean_switch("DYNAMIC_POLYGONS", 1, "%d moving polygon%s, the first is %s",
+                    n.dynamic_polygons, n.dynamic_polygons == 1 ? "" : "s", a);
+    } else if (polygons_on) {
+        lean_switch("DYNAMIC_POLYGONS", 0, "every polygon is static");
+    } else {
+        lean_switch("DYNAMIC_POLYGONS", 0, "no polygons");
+    }
+    if (pp_on) {
+        lean_body_ref(a, sizeof a, &s, n.met_a[MEET_PP]);
+        lean_body_ref(b, sizeof b, &s, n.met_b[MEET_PP]);
+        lean_switch("POLYGON_POLYGON", 1, "polygons %s and %s came within reach in step %ld",
+                    a, b, n.met_step[MEET_PP]);
+    } else if (dyn_on) {
+        lean_switch("POLYGON_POLYGON", 0, "no two polygons ever came within reach");
+    } else if (polygons_on) {
+        lean_switch("POLYGON_POLYGON", 0, "only static polygons, and static bodies never collide");
+    } else {
+        lean_switch("POLYGON_POLYGON", 0, "no polygons");
+    }
+    if (!spin_on) {
+        lean_switch("ROTATION", 0, "no body ever turned (angular velocity 0 after every step), "
+                                   "and no moving polygon came within reach of another body");
+    } else if (n.spin_step < 0) {
+        lean_body_ref(a, sizeof a, &s, n.lever_a);
+        lean_body_ref(b, sizeof b, &s, n.lever_b);
+        lean_switch("ROTATION", 1, "nothing turned, but %s and %s came within reach in step "
+                    "%ld: a polygon's contacts weigh its inertia even when it does not turn",
+                    a, b, n.lever_step);
+    } else {
+        lean_body_ref(a, sizeof a, &s, n.spin_body);
+        if (n.spin_step == 0)
+            lean_switch("ROTATION", 1, "%s starts with an angular velocity or a torque", a);
+        else
+            lean_switch("ROTATION", 1, "%s turned in step %ld", a, n.spin_step);
+    }
+    if (friction_on)
+        lean_switch("FRICTION", 1, "with every friction 0 the state differs after step %ld",
+                    n.friction_step);
+    else if (n.friction_pair)
+        lean_switch("FRICTION", 0, "a second run with every friction 0 gave the same bits "
+                                   "after every step");
+    else
+        lean_switch("FRICTION", 0, "no two bodies that can touch both have friction > 0");
+    if (n.forced >= 0) {
+        lean_body_ref(a, sizeof a, &s, n.forced);
+        lean_switch("FORCES", 1, "%s has a constant force or torque", a);
+    } else {
+        lean_switch("FORCES", 0, "no body has a force or torque: gravity only");
+    }
+    lean_switch("EVENTS", events_on, "the method is %s", carom_method_name(s.world.method));
+    if (sleep_on) {
+        lean_body_ref(a, sizeof a, &s, n.sleep_body);
+        lean_switch("SLEEP", 1, "%s fell asleep in step %ld", a, n.sleep_step);
+    } else {
+        lean_switch("SLEEP", 0, s.world.enable_sleep ? "no body ever fell asleep"
+                                                     : "the scene has sleep=off");
+    }
+    if (n.kinematic > 0) {
+        lean_body_ref(a, sizeof a, &s, n.first_kinematic);
+        lean_switch("KINEMATIC", 1, "%d kinematic bod%s, the first is %s", n.kinematic,
+                    n.kinematic == 1 ? "y" : "ies", a);
+    } else {
+        lean_switch("KINEMATIC", 0, "no kinematic body");
+    }
+    {
+        int filtered = -1, sensor = -1, bi;
+        for (bi = 0; bi < s.body_count; ++bi) {
+            const carom_body_def *d = &s.bodies[bi].def;
+            if (filtered < 0 && (d->category_bits != 1u || d->mask_bits != 0xffffffffu ||
+                                 d->group_index != 0))
+                filtered = bi;
+            if (sensor < 0 && d->is_sensor)
+                sensor = bi;
+        }
+        if (filtered >= 0) {
+            lean_body_ref(a, sizeof a, &s, filtered);
+            lean_switch("FILTERING", 1, "%s has a collision filter", a);
+        } else {
+            lean_switch("FILTERING", 0, "the scene sets no collision filter; turn on if the "
+                                        "program does");
+        }
+        if (sensor >= 0) {
+            lean_body_ref(a, sizeof a, &s, sensor);
+            lean_switch("SENSORS", 1, "%s is a sensor", a);
+        } else {
+            lean_switch("SENSORS", 0, "the scene has no sensor bodies");
+        }
+    }
+    if (s.world.gravity.x == 0.0f && s.world.gravity.y == 0.0f)
+        lean_switch("STACKING", 0, "no gravity: the support order, priming and shock "
+                                   "propagation do nothing");
+    else
+        lean_switch("STACKING", 1, "gravity (%g, %g): stacks need the support order and shock "
+                                   "propagation", (double)s.world.gravity.x,
+                    (double)s.world.gravity.y);
+    lean_switch("STATUS_NAMES", 0, "status names are for messages; turn on if the program "
+                                   "prints carom_status_string()");
+#ifdef CAROM_ENABLE_QUERIES
+    lean_switch("QUERIES", 0, "stepping makes no query; turn on if the program calls them");
+#endif
+#ifdef CAROM_ENABLE_TOUCH_EVENTS
+    lean_switch("TOUCH_EVENTS", 0, "stepping needs no touch reports; turn on if the program "
+                                   "reads them");
+#endif
+    lean_switch("COMPENSATED", CAROM_ENABLE_COMPENSATED,
+                "as this carom was built; it sets the rounding of every position and "
+                "velocity sum, so changing it changes the results");
+    /* limits: polygons' vertex arrays sized to the scene (4 at least:
+     * carom_body_def_set_box writes four) */
+    {
+        int v = n.max_vertices > 4 ? n.max_vertices : 4;
+        if (v < CAROM_MAX_POLYGON_VERTICES)
+            printf("#define CAROM_MAX_POLYGON_VERTICES %d /* limit: the scene's polygons have at "
+                   "most %d vertices (4 at least: boxes) */\n", v, n.max_vertices);
+        else
+            printf("#define CAROM_MAX_POLYGON_VERTICES %d /* limit: as this carom was built; "
+                   "the scene's polygons have up to %d vertices */\n",
+                   CAROM_MAX_POLYGON_VERTICES, n.max_vertices);
+    }
+    printf("#ifndef CAROM_ENABLE_PROFILE\n"
+           "#define CAROM_ENABLE_PROFILE 0 /* off: counting operations is for "
+           "measurement builds (make lean's CLI turns it on) */\n#endif\n");
+    printf("\n/* Shape pairs that came within reach (bounding circles swept over "
+           "each step):\n");
+    for (rc = 0; rc < MEET_KINDS; ++rc) {
+        if (n.met_step[rc] >= 0) {
+            lean_body_ref(a, sizeof a, &s, n.met_a[rc]);
+            lean_body_ref(b, sizeof b, &s, n.met_b[rc]);
+            printf(" *   %-16s first in step %ld: %s and %s\n", meet_names[rc],
+                   n.met_step[rc], a, b);
+        } else {
+            printf(" *   %-16s never\n", meet_names[rc]);
+        }
+    }
+    printf(" */\n");
+
+    printf("\n/* ---- capacities of carom_world_def: the most met in one step, plus "
+           "%ld %% + %ld ---- */\n\n", o.margin, o.slack);
+    printf("#define CAROM_LEAN_MAX_BODIES %d /* the scene's bodies */\n", s.body_count);
+    printf("#define CAROM_LEAN_MAX_PAIRS %ld /* candidate pairs: at most %d */\n", pairs,
+           n.stats.max_pairs_used);
+    printf("#define CAROM_LEAN_MAX_CONTACTS %ld /* contacts: at most %d */\n", contacts,
+           n.stats.max_contacts_used);
+    if (n.stats.budget_steps > 0)
+        printf("#define CAROM_LEAN_MAX_IMPACTS %ld /* as the scene ran it: %ld steps met "
+               "more impacts than this, and a smaller budget would change them */\n",
+               impacts, n.stats.budget_steps);
+    else
+        printf("#define CAROM_LEAN_MAX_IMPACTS %ld /* impacts taken one at a time: at "
+               "most %d */\n", impacts, n.stats.max_impacts_used);
+    printf("#define CAROM_LEAN_MAX_EVENTS %ld /* impacts recorded: at most %d%s */\n", events,
+           n.events, n.dropped ? " (the default cap dropped some)" : "");
+    printf("#define CAROM_LEAN_SET_CAPACITIES(def) \\\n"
+           "    ((def)->max_bodies = CAROM_LEAN_MAX_BODIES, \\\n"
+           "     (def)->max_pairs = CAROM_LEAN_MAX_PAIRS, \\\n"
+           "     (def)->max_contacts = CAROM_LEAN_MAX_CONTACTS, \\\n"
+           "     (def)->max_impacts = CAROM_LEAN_MAX_IMPACTS, \\\n"
+           "     (def)->max_events = CAROM_LEAN_MAX_EVENTS)\n");
+    printf("/* carom_world_buffer_size() of a world with these capacities, as measured\n"
+           " * by the carom that wrote this header (%u-bit pointers, %d polygon\n"
+           " * vertices): the lean build, and a 32-bit target, need no more; call\n"
+           " * carom_world_buffer_size() there for the exact figure. At default\n"
+           " * capacities the scene takes %lu bytes. */\n",
+           (unsigned)(8u * sizeof(void *)), CAROM_MAX_POLYGON_VERTICES,
+           (unsigned long)default_bytes);
+    printf("#define CAROM_LEAN_WORLD_BYTES %lu\n", (unsigned long)bytes);
+    printf("\n#endif /* CAROM_LEAN_H */\n");
+    scene_free(&s);
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "carom: lean: error writing the header\n");
+        return EXIT_SIM;
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -1144,7 +2054,11 @@ int main(int argc, char **argv)
         return 0;
     }
     if (strcmp(argv[1], "--version") == 0 || strcmp(argv[1], "version") == 0) {
+#ifdef CAROM_LEAN_SCENE
+        printf("carom %s (lean build for %s)\n", carom_version(), CAROM_LEAN_SCENE);
+#else
         printf("carom %s\n", carom_version());
+#endif
         return 0;
     }
     if (strcmp(argv[1], "run") == 0)
@@ -1153,5 +2067,7 @@ int main(int argc, char **argv)
         return cmd_sim(CMD_PROFILE, argc - 2, argv + 2);
     if (strcmp(argv[1], "render") == 0)
         return cmd_sim(CMD_RENDER, argc - 2, argv + 2);
-    return usage_error("unknown command '%s' (run, profile, render)", argv[1]);
+    if (strcmp(argv[1], "lean") == 0)
+        return cmd_lean(argc - 2, argv + 2);
+    return usage_error("unknown command '%s' (run, profile, render, lean)", argv[1]);
 }

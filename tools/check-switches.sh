@@ -9,6 +9,12 @@ trap 'rm -rf "$tmp"' EXIT
 size_of() {
     make -s -j"$(nproc 2>/dev/null || echo 2)" BUILD="$tmp/b" lib CAROM_FLAGS="$1" > "$tmp/log" 2>&1 || {
         echo "check-switches: FAIL: build with '$1'" >&2; cat "$tmp/log" >&2; exit 1; }
+    # it must link, every object of it, into a program
+    printf '#include "carom.h"\nint main(void) { return carom_world_step(0) == CAROM_OK; }\n' \
+        > "$tmp/main.c"
+    ${CC:-cc} -Iinclude $1 "$tmp/main.c" -Wl,--whole-archive "$tmp/b/libcarom.a" \
+        -Wl,--no-whole-archive -lm -o "$tmp/main" > "$tmp/log" 2>&1 || {
+        echo "check-switches: FAIL: link with '$1'" >&2; cat "$tmp/log" >&2; exit 1; }
     size -t "$tmp/b/libcarom.a" | tail -n 1 | awk '{print $1}'
     rm -rf "$tmp/b"
 }
@@ -16,7 +22,7 @@ base=$(size_of "")
 printf '%8s  %s\n' "$base" "defaults"
 fail=0
 for sw in POLYGONS ROTATION FRICTION FORCES EVENTS SLEEP KINEMATIC POLYGON_POLYGON \
-    DYNAMIC_POLYGONS FILTERING SENSORS QUERIES TOUCH_EVENTS; do
+    DYNAMIC_POLYGONS FILTERING SENSORS QUERIES TOUCH_EVENTS STACKING STATUS_NAMES; do
     n=$(size_of "-DCAROM_ENABLE_$sw=0")
     printf '%8s  CAROM_ENABLE_%s=0\n' "$n" "$sw"
     if [ "$n" -ge "$base" ]; then
@@ -31,7 +37,7 @@ printf '%8s  CAROM_ENABLE_COMPENSATED=0\n' "$n"
 n=$(size_of "-DCAROM_ENABLE_PROFILE=1")
 printf '%8s  CAROM_ENABLE_PROFILE=1\n' "$n"
 [ "$n" -gt "$base" ] || { echo "check-switches: FAIL: profiling added no code" >&2; fail=1; }
-all_off="-DCAROM_ENABLE_POLYGONS=0 -DCAROM_ENABLE_ROTATION=0 -DCAROM_ENABLE_FRICTION=0 -DCAROM_ENABLE_FORCES=0 -DCAROM_ENABLE_EVENTS=0 -DCAROM_ENABLE_SLEEP=0 -DCAROM_ENABLE_KINEMATIC=0 -DCAROM_ENABLE_COMPENSATED=0 -DCAROM_ENABLE_FILTERING=0 -DCAROM_ENABLE_SENSORS=0 -DCAROM_ENABLE_QUERIES=0 -DCAROM_ENABLE_TOUCH_EVENTS=0"
+all_off="-DCAROM_ENABLE_POLYGONS=0 -DCAROM_ENABLE_ROTATION=0 -DCAROM_ENABLE_FRICTION=0 -DCAROM_ENABLE_FORCES=0 -DCAROM_ENABLE_EVENTS=0 -DCAROM_ENABLE_SLEEP=0 -DCAROM_ENABLE_KINEMATIC=0 -DCAROM_ENABLE_COMPENSATED=0 -DCAROM_ENABLE_FILTERING=0 -DCAROM_ENABLE_SENSORS=0 -DCAROM_ENABLE_QUERIES=0 -DCAROM_ENABLE_TOUCH_EVENTS=0 -DCAROM_ENABLE_STACKING=0 -DCAROM_ENABLE_STATUS_NAMES=0"
 n=$(size_of "$all_off")
 printf '%8s  all capabilities off (circles, no rotation, no friction, gravity only)\n' "$n"
 exit $fail

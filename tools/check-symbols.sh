@@ -4,11 +4,44 @@
 # archive's members need but no member defines, and fails on anything
 # outside the allow-list. The default build must contain no op counter
 # (profiling compiled out costs nothing); the profiling build must.
+#
+# The nm that reads the archive is chosen from its contents, not its name:
+# readelf's machine field of the members (ARM: arm-none-eabi-nm), else
+# whichever of nm and arm-none-eabi-nm lists its symbols.
 set -eu
+usage="usage: sh tools/check-symbols.sh LIB.a [PROFILE_LIB.a]"
+if [ $# -ge 1 ] && { [ "$1" = "--help" ] || [ "$1" = "-h" ]; }; then
+    echo "$usage"
+    exit 0
+fi
+if [ $# -lt 1 ] || [ $# -gt 2 ]; then
+    echo "$usage" >&2
+    exit 2
+fi
 lib="$1"
 [ -f "$lib" ] || { echo "check-symbols: no such archive: $lib" >&2; exit 2; }
-nm="nm"
-case "$lib" in *m4f*|*arm*) nm=arm-none-eabi-nm ;; esac
+
+# pick_nm ARCHIVE: print the nm command for the archive's machine
+pick_nm() {
+    machine=$(readelf -h "$1" 2>/dev/null | sed -n 's/^ *Machine: *//p' | sort -u | head -n 1)
+    case "$machine" in
+        *ARM*|*AArch64*)
+            command -v arm-none-eabi-nm >/dev/null 2>&1 || {
+                echo "check-symbols: $1 holds $machine code: needs arm-none-eabi-nm (Debian: binutils-arm-none-eabi)" >&2
+                return 1; }
+            echo arm-none-eabi-nm
+            return 0 ;;
+    esac
+    for cand in nm arm-none-eabi-nm; do
+        if command -v "$cand" >/dev/null 2>&1 && "$cand" "$1" >/dev/null 2>&1; then
+            echo "$cand"
+            return 0
+        fi
+    done
+    echo "check-symbols: no nm here reads $1 (machine: ${machine:-unknown})" >&2
+    return 1
+}
+nm=$(pick_nm "$lib") || exit 2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 $nm -g --defined-only "$lib" | awk 'NF == 3 {print $3}' | sort -u > "$tmp/defined"
@@ -35,11 +68,13 @@ if $nm "$lib" | grep -q 'carom__op_row'; then
 fi
 echo "check-symbols: ok: $lib has no op counter (counting compiled out)"
 if [ $# -ge 2 ]; then
-    if ! nm -g --defined-only "$2" | grep -q ' carom__op_row$'; then
+    [ -f "$2" ] || { echo "check-symbols: no such archive: $2" >&2; exit 2; }
+    nm=$(pick_nm "$2") || exit 2
+    if ! $nm -g --defined-only "$2" | grep -q ' carom__op_row$'; then
         echo "check-symbols: FAIL: $2 lacks the op counter: profiling is not compiled in" >&2
         exit 1
     fi
-    if nm -u "$2" | grep -qE ' (malloc|calloc|realloc|free)$'; then
+    if $nm -u "$2" | grep -qE ' (malloc|calloc|realloc|free)$'; then
         echo "check-symbols: FAIL: $2 calls the allocator" >&2
         exit 1
     fi

@@ -4,7 +4,9 @@
  * reports over semihosting and exits through it.
  *
  * Build-time settings: FW_WORLD_BYTES (world buffer), FW_SMALL (1: the
- * reduced suite only), FW_BOARD (a name printed first).
+ * reduced suite only), FW_BOARD (a name printed first), FW_SIZES (print
+ * what worlds cost in memory, sizes.c, instead of running the suite),
+ * FW_PHASES (the calibration's phase markers, below).
  */
 #include <stdint.h>
 
@@ -87,6 +89,60 @@ __attribute__((noinline)) void platform_mark(int what)
     __asm__ volatile("" : : "r"(what) : "memory");
 }
 
+/* ---- phases, for the instruction counter (FW_PHASES) ---------------------------------
+ *
+ * Built with FW_PHASES and a profiling library (CAROM_ENABLE_PROFILE), and
+ * linked with --wrap=cr_prof_phase --wrap=carom_world_step: every phase
+ * switch of the library and every step's start and end calls one of the
+ * marker functions below, each at its own address, which the QEMU plugin
+ * watches (phase=ADDR0:...:ADDR7). Markers 0 to 5 are the profiler's
+ * phases, 6 is carom_world_step outside any phase, 7 is outside a step.
+ * This code lives in its own section, .fwmeta, so that the plugin counts
+ * its instructions apart (meta=START:END). */
+#ifdef FW_PHASES
+#include "carom.h"
+
+#define FW_META __attribute__((noinline, section(".fwmeta")))
+#define FW_MARKER(k)                                                           \
+    FW_META void fw_phase_##k(void) { __asm__ volatile("" : : : "memory"); }
+FW_MARKER(0)
+FW_MARKER(1)
+FW_MARKER(2)
+FW_MARKER(3)
+FW_MARKER(4)
+FW_MARKER(5)
+FW_MARKER(6)
+FW_MARKER(7)
+
+void __real_cr_prof_phase(const carom_world *w, int phase);
+void __wrap_cr_prof_phase(const carom_world *w, int phase);
+carom_status __real_carom_world_step(carom_world *w);
+carom_status __wrap_carom_world_step(carom_world *w);
+
+FW_META void __wrap_cr_prof_phase(const carom_world *w, int phase)
+{
+    switch (phase) {
+    case 0: fw_phase_0(); break;
+    case 1: fw_phase_1(); break;
+    case 2: fw_phase_2(); break;
+    case 3: fw_phase_3(); break;
+    case 4: fw_phase_4(); break;
+    case 5: fw_phase_5(); break;
+    default: fw_phase_6(); break;
+    }
+    __real_cr_prof_phase(w, phase);
+}
+
+FW_META carom_status __wrap_carom_world_step(carom_world *w)
+{
+    carom_status st;
+    fw_phase_6();
+    st = __real_carom_world_step(w);
+    fw_phase_7();
+    return st;
+}
+#endif
+
 /* ---- main --------------------------------------------------------------------------- */
 
 static unsigned char world_mem[FW_WORLD_BYTES] __attribute__((aligned(16)));
@@ -94,5 +150,10 @@ static unsigned char world_mem[FW_WORLD_BYTES] __attribute__((aligned(16)));
 int main(void)
 {
     fw_write("board " FW_BOARD "\n");
+#ifdef FW_SIZES
+    (void)world_mem;
+    return sizes_run();
+#else
     return suite_run(world_mem, sizeof world_mem, FW_SMALL) == 0 ? 0 : 1;
+#endif
 }

@@ -36,6 +36,14 @@ void platform_mark(int what) { (void)what; }
 const suite_scene suite_scenes[1];
 const int suite_scene_count = 0;
 
+/* Where the last field of carom_world_def this file knows of ends: a
+ * field added after it must be carried (or checked) here. */
+#ifdef CAROM_DEFAULT_TOUCH_EVENTS_PER_BODY
+#define SUITE_WORLD_DEF_END (offsetof(carom_world_def, max_touch_events) + sizeof(int))
+#else
+#define SUITE_WORLD_DEF_END (offsetof(carom_world_def, force_user) + sizeof(void *))
+#endif
+
 typedef struct need {
     int pairs, contacts, impacts;
 } need;
@@ -265,12 +273,16 @@ int main(int argc, char **argv)
                 theirs.max_contacts = sc.max_contacts;
                 theirs.max_events = sc.max_events;
                 theirs.max_impacts = sc.max_impacts;
-                /* Up to the callback pointers (after them: padding, and
-                 * no field today). */
+                /* Up to the callback pointers; then the fields after
+                 * them one by one (padding is not compared), and no field
+                 * this file does not know of. */
                 if (memcmp(&mine, &theirs, offsetof(carom_world_def, force_fn)) != 0 ||
                     theirs.force_fn != NULL ||
-                    sizeof(carom_world_def) != offsetof(carom_world_def, force_user) +
-                                                   sizeof(void *)) {
+#ifdef CAROM_DEFAULT_TOUCH_EVENTS_PER_BODY
+                    mine.max_touch_events != theirs.max_touch_events ||
+#endif
+                    sizeof(carom_world_def) > ((SUITE_WORLD_DEF_END + sizeof(void *) - 1) /
+                                               sizeof(void *)) * sizeof(void *)) {
                     fprintf(stderr, "%s: the suite's record does not rebuild the "
                             "parser's world definition (a field gen_suite.c does "
                             "not carry?)\n", path);

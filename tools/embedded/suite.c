@@ -65,6 +65,10 @@ void suite_world_def(const suite_scene *s, carom_method method,
     d->relax_iterations = s->relax_iterations;
     d->enable_sleep = s->enable_sleep;
     d->sleep_time = s->sleep_time;
+#ifdef CAROM_LEAN_SET_CAPACITIES
+    /* a lean firmware (embedded-lean8k): the capacities `carom lean` gave */
+    CAROM_LEAN_SET_CAPACITIES(d);
+#endif
 }
 
 /* ---- output ----------------------------------------------------------------- */
@@ -99,6 +103,24 @@ static void put_long(line *l, long v)
         put(l, c);
     }
 }
+
+#if CAROM_ENABLE_PROFILE
+static void put_u64(line *l, uint64_t v)
+{
+    char tmp[24];
+    int i = 0;
+    do {
+        tmp[i++] = (char)('0' + (int)(v % 10u));
+        v /= 10u;
+    } while (v);
+    while (i > 0) {
+        char c[2];
+        c[0] = tmp[--i];
+        c[1] = '\0';
+        put(l, c);
+    }
+}
+#endif
 
 static void put_hex64(line *l, uint64_t v)
 {
@@ -173,6 +195,9 @@ static int run_one(const suite_scene *s, carom_method method, void *mem,
     carom_status status;
     size_t need;
     uint64_t h = FNV_OFFSET;
+#if CAROM_ENABLE_PROFILE
+    static carom_profile prof;
+#endif
     uintptr_t sp;
     long i, peak;
     int b;
@@ -191,13 +216,13 @@ static int run_one(const suite_scene *s, carom_method method, void *mem,
         put(&l, " bodies=");
         put_long(&l, s->body_count);
         put(&l, " pairs=");
-        put_long(&l, s->max_pairs);
+        put_long(&l, wd.max_pairs);
         put(&l, " contacts=");
-        put_long(&l, s->max_contacts);
+        put_long(&l, wd.max_contacts);
         put(&l, " events=");
-        put_long(&l, s->max_events);
+        put_long(&l, wd.max_events);
         put(&l, " impacts=");
-        put_long(&l, s->max_impacts);
+        put_long(&l, wd.max_impacts);
         put(&l, " buffer=");
         put_long(&l, (long)bytes);
         emit(&l);
@@ -216,6 +241,11 @@ static int run_one(const suite_scene *s, carom_method method, void *mem,
             return fail(s, mname, "add body", status);
     }
 
+#if CAROM_ENABLE_PROFILE
+    /* a profiling build (the phase firmware): count this run's operations */
+    carom_profile_reset(&prof);
+    carom_world_set_profile(w, &prof);
+#endif
     platform_stack_paint();
     SUITE_READ_SP(sp);
     platform_mark(0);
@@ -246,6 +276,34 @@ static int run_one(const suite_scene *s, carom_method method, void *mem,
     status = carom_world_get_stats(w, &stats);
     if (status != CAROM_OK)
         return fail(s, mname, "stats", status);
+#if CAROM_ENABLE_PROFILE
+    carom_world_set_profile(w, NULL);
+    {
+        int ph, k;
+        for (ph = 0; ph < CAROM_PHASE_COUNT; ++ph) {
+            put(&l, "ops ");
+            put(&l, s->name);
+            put(&l, " ");
+            put(&l, mname);
+            put(&l, " ");
+            put(&l, carom_phase_name((carom_phase)ph));
+            for (k = 0; k < CAROM_OP_COUNT; ++k) {
+                put(&l, " ");
+                put_u64(&l, prof.ops[ph][k]);
+            }
+            emit(&l);
+        }
+        put(&l, "ops ");
+        put(&l, s->name);
+        put(&l, " ");
+        put(&l, mname);
+        put(&l, " body_steps ");
+        put_u64(&l, prof.body_steps);
+        put(&l, " impacts ");
+        put_u64(&l, prof.impacts);
+        emit(&l);
+    }
+#endif
 
     put(&l, "result ");
     put(&l, s->name);
@@ -286,8 +344,11 @@ int suite_run(void *world_mem, size_t world_bytes, int small_only)
         if (small_only && !(s->flags & SUITE_SMALL))
             continue;
         failures += run_one(s, CAROM_METHOD_EVENTS, world_mem, world_bytes);
+        runs += 1;
+#ifndef SUITE_EVENTS_ONLY
         failures += run_one(s, CAROM_METHOD_DISCRETE, world_mem, world_bytes);
-        runs += 2;
+        runs += 1;
+#endif
     }
     l.n = 0;
     put(&l, "done runs=");

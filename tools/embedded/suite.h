@@ -62,6 +62,9 @@ void suite_world_def(const suite_scene *s, carom_method method,
  * Returns the number of failed runs. */
 int suite_run(void *world_mem, size_t world_bytes, int small_only);
 
+/* Print what a world costs in memory (sizes.c): "size KEY VALUE" lines. */
+int sizes_run(void);
+
 /* ---- what each platform provides ---------------------------------------- */
 
 /* Write a string (no newline added). */
