@@ -208,6 +208,9 @@ carom_status carom_body_set_angular_velocity(carom_world *w, int id, float angul
     if (cr_gt(cr_mul(cr_abs(angular), w->info[s].shape.extent), CAROM_LIMIT_MAX_SPEED))
         return CAROM_ERR_OUT_OF_RANGE;
     w->bodies[s].w = angular;
+#if CAROM_ENABLE_COMPENSATED
+    w->bodies[s].wc = 0.0f;
+#endif
     cr_island_wake(w, s);
     return CAROM_OK;
 }

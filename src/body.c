@@ -363,6 +363,7 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
 #if CAROM_ENABLE_COMPENSATED
     b.xc = cr_v(0.0f, 0.0f);
     b.vc = cr_v(0.0f, 0.0f);
+    b.wc = 0.0f;
 #endif
     b.inv_m = 0.0f;
     b.inv_I = 0.0f;

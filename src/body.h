@@ -34,6 +34,7 @@ typedef struct cr_body {
     float alpha;  /* angular acceleration of the torques at the current state */
 #if CAROM_ENABLE_COMPENSATED
     cr_v2 xc, vc; /* compensation terms of x and v (cr_kadd) */
+    float wc;     /* and of w */
 #endif
     float inv_m, inv_I; /* 0 for static and kinematic bodies */
     float still_time;   /* s the body has been below the sleep speed */

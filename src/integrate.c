@@ -55,6 +55,15 @@ void cr_add_velocity(cr_body *b, cr_v2 dv)
 #endif
 }
 
+void cr_add_angular(cr_body *b, float dw)
+{
+#if CAROM_ENABLE_COMPENSATED
+    cr_kadd(&b->w, &b->wc, dw);
+#else
+    b->w = cr_add(b->w, dw);
+#endif
+}
+
 /* Displacement v h + a h^2 / 2 of a drift over h. */
 static cr_v2 cr_drift_offset(cr_v2 v, cr_v2 a, float h)
 {
@@ -98,7 +107,7 @@ void cr_sync(cr_body *b, cr_drift *d, float s)
     cr_add_velocity(b, cr_vscale(h, d->a));
 #if CAROM_ENABLE_ROTATION
     b->q = cr_rot_advance(b->q, cr_drift_angle(b->w, d->alpha, h));
-    b->w = cr_add(b->w, cr_mul(h, d->alpha));
+    cr_add_angular(b, cr_mul(h, d->alpha));
 #endif
 }
 

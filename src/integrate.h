@@ -42,6 +42,9 @@ cr_rot cr_rot_advance(cr_rot q, float angle);
 /* Add dv to the velocity (compensated sum when enabled). */
 void cr_add_velocity(cr_body *b, cr_v2 dv);
 
+/* w += dw, compensated like the velocity. */
+void cr_add_angular(cr_body *b, float dw);
+
 /* Add dx to the position (compensated sum when enabled). */
 void cr_add_position(cr_body *b, cr_v2 dx);
 

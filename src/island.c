@@ -181,6 +181,7 @@ void cr_island_sleep(carom_world *w, float dt)
         b->w = 0.0f;
 #if CAROM_ENABLE_COMPENSATED
         b->vc = cr_v(0.0f, 0.0f);
+        b->wc = 0.0f;
 #endif
         w->bodies[id].sleep_island = root;
     }

@@ -566,7 +566,7 @@ static carom_status cr_finish_velocities(carom_world *w)
             cr_add_velocity(b, cr_vscale(half, cr_vsub(a1, b->a)));
         b->a = a1;
 #if CAROM_ENABLE_ROTATION
-        b->w = cr_add(b->w, cr_mul(half, cr_sub(alpha1, b->alpha)));
+        cr_add_angular(b, cr_mul(half, cr_sub(alpha1, b->alpha)));
         b->alpha = alpha1;
 #endif
         if (b->flags & CR_BODY_ONCE) {

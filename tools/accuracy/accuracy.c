@@ -1638,8 +1638,8 @@ static const check_row check_rows[] = {
     {"projectile", "discrete", 240, "pos_err", 1e-6},
     {"projectile", "discrete", 3840, "pos_err", 1e-6},
     {"projectile", "events", 15, "ang_err", 3e-6},
-    {"projectile", "events", 240, "ang_err", 1e-4},
-    {"projectile", "events", 3840, "ang_err", 2e-3},
+    {"projectile", "events", 240, "ang_err", 1e-6},
+    {"projectile", "events", 3840, "ang_err", 3e-5},
 };
 
 static int check_main(int argc, char **argv)
