@@ -270,7 +270,7 @@ that row's growth compares different stretches of the motion.
     o.append("")
 
     # targets
-    o.append("## Targets of issue 12")
+    o.append("## Targets")
     o.append("")
     o.append("| target | bodies | measured | limit | |")
     o.append("|---|---|---|---|---|")

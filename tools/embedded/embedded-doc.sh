@@ -290,7 +290,7 @@ done
 row lean-cradle-discrete "lean cradle with --method discrete"
 cat <<EOF
 
-### The size targets of issue 13
+### The size targets
 
 A circles-only frictionless scene's lean library should be at most half
 the default text, a gas in a box of static walls at most 0.8 of it. With
@@ -377,7 +377,7 @@ cat <<EOF
 A unit of pair capacity is a candidate pair (two copies for the sort) and
 a heap entry; a contact is its constraint, its solve-order slot and two
 warm-start records; an event is a \`carom_event\`. Impacts per step
-(\`max_impacts\`) cost nothing: it is a budget, not an array. Issue 13's
+(\`max_impacts\`) cost nothing: it is a budget, not an array. The
 target of at most 500 bytes per body at default capacities is
 $(awk '$2 ~ /^default_world_/ { n = $2; gsub(/[^0-9]/, "", n); if ($3 / n > 500) bad = 1 }
        END { print (bad ? "not met" : "met") }' "$work/sizes-m0.txt").

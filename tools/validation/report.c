@@ -682,7 +682,7 @@ static void write_large(FILE *f, const suite *su, const check_table *t)
         return;
     fprintf(f,
             "\n## Large time steps and large gravity\n\n"
-            "`large-*` (issue 10): a ball (radius 0.5, e = 0) dropped from rest, its\n"
+            "`large-*`: a ball (radius 0.5, e = 0) dropped from rest, its\n"
             "lowest point 2 m above a static floor 1 m thick, with the default gravity\n"
             "at dt = 0.5, 0.4 and 0.25 s, and with gravity 1e4 at dt = 1/60 s. The\n"
             "impact comes inside a step; there the ball stops, and the contact found\n"

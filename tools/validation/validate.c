@@ -1,6 +1,6 @@
 /*
  * validate.c -- build/validate: carom against Box2D 2.4.1 and against exact
- * answers (issue 5), driven by one check table. See validate.h for the
+ * answers, driven by one check table. See validate.h for the
  * pieces and `validate --help` for the use.
  */
 #include <dirent.h>
