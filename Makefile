@@ -59,6 +59,8 @@ include mk/lean.mk
 include tests/fuzz/fuzz.mk
 # make docs-check: every path, file and make target the docs name exists.
 include mk/docs.mk
+# make coverage, coverage-check, sanitize, memcheck (mk/quality.mk).
+include mk/quality.mk
 HAVE_BOX2D := $(shell pkg-config --exists box2d 2>/dev/null && echo yes)
 
 .PHONY: check-cross all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
@@ -178,7 +180,11 @@ check: deps
 	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=30
 	@$(MAKE) --no-print-directory install-test
 	@$(MAKE) --no-print-directory check-cxx
+	@$(MAKE) --no-print-directory coverage-check
+	@$(MAKE) --no-print-directory sanitize
+	@$(MAKE) --no-print-directory memcheck
 	@$(MAKE) --no-print-directory help-check
+	@$(MAKE) --no-print-directory docs-check
 
 # ---- the main job -----------------------------------------------------------
 
@@ -205,7 +211,7 @@ help:
 	@echo "  make fuzz-build      the libFuzzer harnesses only, in $(BUILD)/fuzz/"
 	@echo ""
 	@echo "test"
-	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, readme-test, validate-check, cli-test, stress-check, accuracy-check, check-embedded, lean-check, fuzz (30 s a harness when clang is here), install-test, check-cxx, help-check"
+	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, readme-test, header-example-check, examples-check, validate-check, cli-test, stress-check, accuracy-check, check-embedded, lean-check, fuzz (30 s a harness when clang is here), install-test, check-cxx, coverage-check, sanitize, memcheck, help-check, docs-check"
 	@echo "  make unit            the Check unit tests, plain and profiling builds"
 	@echo "  make cli-test        $(CLI)'s command-line tests (tests/cli_test.sh)"
 	@echo "  make readme-test     the README's example program compiles and runs"
@@ -225,6 +231,10 @@ help:
 	@echo "  make check-cxx       include/carom.h compiles as C++98 and C++17 (-Wall -Wextra -Werror -pedantic)"
 	@echo "  make help-check      every .PHONY target is listed by make help"
 	@echo "  make docs-check      every path and file the README and docs/ name exists; every make target they name is in make help"
+	@echo "  make coverage        unit and CLI tests built with --coverage: $(BUILD)/coverage/index.html and summary.json over src/ (gcovr)"
+	@echo "  make coverage-check  make coverage, then fail below 95 % of lines or 85 % of branches of src/"
+	@echo "  make sanitize        unit and CLI tests under AddressSanitizer and UndefinedBehaviorSanitizer (SAN_CC=gcc or clang)"
+	@echo "  make memcheck        the CLI under valgrind memcheck on every example scene and six stress scenes"
 	@echo ""
 	@echo "run and report"
 	@echo "  make run             run SCENE (default $(SCENE)): impacts, final state, operation counts"

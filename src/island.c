@@ -54,10 +54,21 @@ static int cr_asleep(const cr_body *b)
     return b->type == CAROM_BODY_DYNAMIC && !(b->flags & CR_BODY_AWAKE);
 }
 
-/* Awake and able to move: a dynamic or kinematic body that is simulated. */
+/* A kinematic body given a velocity (one at rest is a floor like a
+ * static body). */
+static int cr_kinematic_moving(const cr_body *b)
+{
+    return b->type == CAROM_BODY_KINEMATIC &&
+           (!cr_eq(b->v.x, 0.0f) || !cr_eq(b->v.y, 0.0f) || !cr_eq(b->w, 0.0f));
+}
+
+/* Able to move into a sleeping body this step: an awake dynamic body, or
+ * a moving kinematic one. */
 static int cr_awake_mover(const cr_body *b)
 {
-    return b->type != CAROM_BODY_STATIC && (b->flags & CR_BODY_AWAKE);
+    if (b->type == CAROM_BODY_KINEMATIC)
+        return cr_kinematic_moving(b);
+    return b->type == CAROM_BODY_DYNAMIC && (b->flags & CR_BODY_AWAKE);
 }
 
 /*
@@ -91,12 +102,6 @@ int cr_island_wake_touched(carom_world *w)
 }
 
 #if CAROM_ENABLE_SLEEP
-static int cr_kinematic_moving(const cr_body *b)
-{
-    return b->type == CAROM_BODY_KINEMATIC &&
-           (!cr_eq(b->v.x, 0.0f) || !cr_eq(b->v.y, 0.0f) || !cr_eq(b->w, 0.0f));
-}
-
 static int cr_find(int *parent, int i)
 {
     while (parent[i] != i) {

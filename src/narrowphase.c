@@ -197,6 +197,14 @@ static int cr_incident_edge(const cr_v2 *nrm, int count, cr_v2 n)
     return best;
 }
 
+/* How far u lies outside the span [0, upper] along a reference face. */
+static float cr_lateral_excess(float u, float upper)
+{
+    if (cr_lt(u, 0.0f))
+        return cr_neg(u);
+    return cr_gt(u, upper) ? cr_sub(u, upper) : 0.0f;
+}
+
 static int cr_polygons(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
                        float reach, float face_tol, cr_manifold *m)
 {
@@ -251,13 +259,19 @@ static int cr_polygons(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
     lower2 = cr_vdot(t, cr_vsub(v22, v11));
     span = cr_sub(upper2, lower2);
     if (cr_lt(upper2, 0.0f) || cr_gt(lower2, upper1) || !cr_gt(span, 0.0f)) {
-        /* no lateral overlap (a corner passing a corner): the nearer end */
-        int near22 = cr_lt(cr_vdot(nref, cr_vsub(v22, v11)),
-                           cr_vdot(nref, cr_vsub(v21, v11)));
+        /* no lateral overlap (a corner passing a corner): the end nearer
+         * the reference face along it (the deeper on a tie), at the
+         * separation along this axis, the deeper end's (a bound on the
+         * distance, as the axis test gave) */
+        float d21 = cr_vdot(nref, cr_vsub(v21, v11));
+        float d22 = cr_vdot(nref, cr_vsub(v22, v11));
+        float x21 = cr_lateral_excess(upper2, upper1);
+        float x22 = cr_lateral_excess(lower2, upper1);
+        int near22 = cr_lt(x22, x21) || (cr_eq(x22, x21) && cr_lt(d22, d21));
         lo = hi = near22 ? v22 : v21;
         pts[0] = lo;
         ids[0] = near22 ? CR_ID(i11, i22) : CR_ID(i12, i21);
-        seps[0] = cr_vdot(nref, cr_vsub(lo, v11));
+        seps[0] = cr_min(d21, d22);
         k = 1;
     } else {
         /* an end cut by a side plane lies on that plane exactly (at the

@@ -155,6 +155,141 @@ START_TEST(test_pair_overflow_is_counted_not_written)
 }
 END_TEST
 
+/* Boxes in one column of cells, up to 60 cells high: cells with the same x
+ * and y 16 apart share a bucket of the 16-bucket table (the hash's y
+ * factor is odd), and must still be told apart. The same along a row. */
+START_TEST(test_grid_tells_apart_cells_that_share_a_bucket)
+{
+    static bp_fixture f;
+    int i, n = 8;
+    fixture_init(&f, n);
+    for (i = 0; i < n; ++i) { /* 0.5 wide: cell 1; centres 8 cells apart */
+        float y = 8.0f * (float)i + 0.5f * (float)(i % 3);
+        f.boxes[i].lo_x = 0.1f;
+        f.boxes[i].hi_x = 0.6f;
+        f.boxes[i].lo_y = y;
+        f.boxes[i].hi_y = y + 0.5f;
+        f.is_static[i] = 0;
+    }
+    f.boxes[5].lo_y = f.boxes[4].lo_y + 0.2f; /* one overlapping pair */
+    f.boxes[5].hi_y = f.boxes[5].lo_y + 0.5f;
+    check_against_all_pairs(&f, n);
+    for (i = 0; i < n; ++i) {
+        float lo_x = f.boxes[i].lo_y, hi_x = f.boxes[i].hi_y;
+        f.boxes[i].lo_y = 0.1f;
+        f.boxes[i].hi_y = 0.6f;
+        f.boxes[i].lo_x = lo_x;
+        f.boxes[i].hi_x = hi_x;
+    }
+    check_against_all_pairs(&f, n);
+}
+END_TEST
+
+/* Degenerate layouts: no body at all; bodies that are points (boxes of
+ * size 0, so the mean size gives no cell), some of them coincident. */
+START_TEST(test_grid_handles_no_bodies_and_point_boxes)
+{
+    static bp_fixture f;
+    int i, n = 40;
+    long found;
+    fixture_init(&f, n);
+    cr_broadphase_build(&f.bp, f.boxes, f.bodies, 0);
+    found = cr_broadphase_pairs(&f.bp, f.boxes, accept_not_both_static, &f, f.pairs, 10);
+    ck_assert_int_eq(found, 0);
+    for (i = 0; i < n; ++i) {
+        float x = (float)(i % 7) * 0.25f, y = (float)(i % 5) * 0.5f;
+        f.boxes[i].lo_x = f.boxes[i].hi_x = x;
+        f.boxes[i].lo_y = f.boxes[i].hi_y = y;
+        f.is_static[i] = 0;
+    }
+    check_against_all_pairs(&f, n);
+}
+END_TEST
+
+/* Tiny boxes far out on the negative side: cell coordinates beyond the
+ * grid's clamp (1e9 cells) on both sides, and still the exact pairs. */
+START_TEST(test_grid_clamps_cells_beyond_its_range_on_both_sides)
+{
+    static bp_fixture f;
+    int i, n = 60;
+    fixture_init(&f, n);
+    random_boxes(&f, n, 4242u, 1.0f, 1e-4f, 2e-4f);
+    for (i = 0; i < 6; ++i) { /* cell 4e-4: 8e7 / 4e-4 = 2e11 cells out */
+        float x = (i % 2 ? 1.0f : -1.0f) * 8.0e7f, y = (i < 3 ? -1.0f : 1.0f) * 8.0e7f;
+        f.boxes[i].lo_x = x;
+        f.boxes[i].hi_x = x + (i == 1 ? 8.0f : 0.0f);
+        f.boxes[i].lo_y = y;
+        f.boxes[i].hi_y = y;
+    }
+    check_against_all_pairs(&f, n);
+}
+END_TEST
+
+/* A query callback that records the bodies it is given and stops after
+ * `stop_after` of them (0: never stops). */
+typedef struct q_ctx {
+    int seen[N_MAX];
+    int count, stop_after;
+} q_ctx;
+
+static int record(void *ctx, int body)
+{
+    q_ctx *q = (q_ctx *)ctx;
+    q->seen[q->count++] = body;
+    return q->stop_after == 0 || q->count < q->stop_after;
+}
+
+static int box_overlap(const cr_box *p, const cr_box *q)
+{
+    return p->lo_x <= q->hi_x && q->lo_x <= p->hi_x && p->lo_y <= q->hi_y &&
+           q->lo_y <= p->hi_y;
+}
+
+/* The query gives each body whose box overlaps the query box exactly once,
+ * through the cells it covers, through all items when that is fewer, and
+ * through the large boxes; a callback returning 0 stops it at once. */
+START_TEST(test_query_gives_every_overlapping_body_once_and_stops_on_request)
+{
+    static bp_fixture f;
+    static q_ctx q;
+    int n = 200, i, k, j;
+    cr_box boxes_q[3];
+    fixture_init(&f, n);
+    random_boxes(&f, n, 31337u, 8.0f, 0.05f, 0.3f);
+    /* a floor larger than a cell */
+    f.boxes[0].lo_x = -9.0f; f.boxes[0].hi_x = 9.0f; f.boxes[0].lo_y = -9.0f; f.boxes[0].hi_y = -8.5f;
+    cr_broadphase_build(&f.bp, f.boxes, f.bodies, n);
+    ck_assert_int_ge(f.bp.big_count, 1);
+    /* a small query (its cells), a huge one (all items), one over the floor only */
+    boxes_q[0].lo_x = -1.0f; boxes_q[0].hi_x = 1.0f; boxes_q[0].lo_y = -1.0f; boxes_q[0].hi_y = 1.0f;
+    boxes_q[1].lo_x = -50.0f; boxes_q[1].hi_x = 50.0f; boxes_q[1].lo_y = -50.0f; boxes_q[1].hi_y = 50.0f;
+    boxes_q[2].lo_x = 8.6f; boxes_q[2].hi_x = 8.8f; boxes_q[2].lo_y = -8.8f; boxes_q[2].hi_y = -8.7f;
+    for (k = 0; k < 3; ++k) {
+        int expected = 0;
+        memset(&q, 0, sizeof q);
+        ck_assert_int_eq(cr_broadphase_query(&f.bp, f.boxes, &boxes_q[k], record, &q), 1);
+        for (i = 0; i < n; ++i) {
+            int times = 0;
+            for (j = 0; j < q.count; ++j)
+                times += q.seen[j] == i;
+            if (box_overlap(&f.boxes[i], &boxes_q[k])) {
+                ++expected;
+                ck_assert_msg(times == 1, "query %d: body %d given %d times", k, i, times);
+            } else {
+                ck_assert_msg(times == 0, "query %d: body %d does not overlap", k, i);
+            }
+        }
+        ck_assert_int_eq(q.count, expected);
+        ck_assert_int_ge(expected, 1);
+        /* stop at the first body */
+        memset(&q, 0, sizeof q);
+        q.stop_after = 1;
+        ck_assert_int_eq(cr_broadphase_query(&f.bp, f.boxes, &boxes_q[k], record, &q), 0);
+        ck_assert_int_eq(q.count, 1);
+    }
+}
+END_TEST
+
 /* Through the world: a pile denser than the default pair capacity fails
  * with CAROM_ERR_PAIR_CAPACITY and leaves the world as it was. */
 START_TEST(test_world_pair_capacity_is_a_clean_failure)
@@ -189,6 +324,10 @@ Suite *suite_broadphase(void)
     tcase_add_test(tc, test_grid_handles_huge_and_negative_coordinates);
     tcase_add_test(tc, test_pair_overflow_is_counted_not_written);
     tcase_add_test(tc, test_world_pair_capacity_is_a_clean_failure);
+    tcase_add_test(tc, test_grid_tells_apart_cells_that_share_a_bucket);
+    tcase_add_test(tc, test_grid_handles_no_bodies_and_point_boxes);
+    tcase_add_test(tc, test_grid_clamps_cells_beyond_its_range_on_both_sides);
+    tcase_add_test(tc, test_query_gives_every_overlapping_body_once_and_stops_on_request);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -3,6 +3,8 @@
  * constant acceleration (free fall, constant force, constant torque),
  * second-order and symplectic for a spring (force callback).
  */
+#include <string.h>
+
 #include "test_util.h"
 
 static tw lone_world(float gy, float dt)
@@ -143,6 +145,78 @@ START_TEST(test_force_callback_spring_has_second_order_phase_and_bounded_energy)
 }
 END_TEST
 
+/* A force callback whose result the program changes between steps. */
+typedef struct push {
+    float fx, fy, torque;
+} push;
+
+static void pushed(void *user, int body, const carom_body_state *st,
+                   carom_vec2 *f, float *torque)
+{
+    const push *p = (const push *)user;
+    (void)body;
+    (void)st;
+    f->x = p->fx;
+    f->y = p->fy;
+    *torque = p->torque;
+}
+
+/* Each bad result of the callback (a NaN or infinite component, or an
+ * acceleration beyond CAROM_LIMIT_MAX_ACCEL: for a 1 kg disc of radius
+ * 0.5, F > 1e12 N or T r / I = 4 T > 1e12) fails the step with its status,
+ * names the body and leaves its state as it was; a good one then steps. */
+START_TEST(test_bad_callback_results_fail_the_step_and_change_nothing)
+{
+    static const struct {
+        float fx, fy, torque;
+        carom_status st;
+    } cases[] = {
+        {0.0f, INFINITY, 0.0f, CAROM_ERR_NOT_FINITE},
+        {0.0f, 0.0f, NAN, CAROM_ERR_NOT_FINITE},
+        {NAN, 0.0f, 0.0f, CAROM_ERR_NOT_FINITE},
+        {2.0e12f, 0.0f, 0.0f, CAROM_ERR_OUT_OF_RANGE},
+        {0.0f, -2.0e12f, 0.0f, CAROM_ERR_OUT_OF_RANGE},
+        {0.0f, 0.0f, 5.0e11f, CAROM_ERR_OUT_OF_RANGE},
+    };
+    push p = {0.0f, 0.0f, 0.0f};
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_body_state before, after;
+    size_t i;
+    tw t;
+    int id;
+    wd.gravity.y = 0.0f;
+    wd.max_bodies = 2;
+    wd.force_fn = pushed;
+    wd.force_user = &p;
+    t = tw_make(&wd);
+    bd.mass = 1.0f;
+    bd.velocity.x = 1.0f;
+    id = tw_add(&t, &bd);
+    tw_steps(&t, 1);
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        carom_status st;
+        before = tw_state(&t, id);
+        p.fx = cases[i].fx;
+        p.fy = cases[i].fy;
+        p.torque = cases[i].torque;
+        st = carom_world_step(t.w);
+        ck_assert_msg(st == cases[i].st, "case %d: %s, expected %s", (int)i,
+                      carom_status_string(st), carom_status_string(cases[i].st));
+        ck_assert_int_eq(carom_world_error_body(t.w), id);
+        after = tw_state(&t, id);
+        ck_assert_msg(memcmp(&before, &after, sizeof before) == 0, "case %d moved the body", (int)i);
+    }
+    /* within range again: the step is taken, x advances by v dt */
+    p.fx = p.fy = p.torque = 0.0f;
+    before = tw_state(&t, id);
+    tw_steps(&t, 1);
+    after = tw_state(&t, id);
+    ck_assert_close(after.center.x, before.center.x + 1.0 / 60.0, 1e-6);
+    tw_free(&t);
+}
+END_TEST
+
 Suite *suite_integrate(void)
 {
     Suite *s = suite_create("integrate");
@@ -152,6 +226,7 @@ Suite *suite_integrate(void)
     tcase_add_test(tc, test_constant_torque_gives_angle_alpha_t2_over_2);
     tcase_add_test(tc, test_spin_without_torque_turns_at_constant_rate);
     tcase_add_test(tc, test_force_callback_spring_has_second_order_phase_and_bounded_energy);
+    tcase_add_test(tc, test_bad_callback_results_fail_the_step_and_change_nothing);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -20,6 +20,10 @@ int main(void)
     srunner_add_suite(sr, suite_scene());
     srunner_add_suite(sr, suite_robust());
     srunner_add_suite(sr, suite_api());
+    srunner_add_suite(sr, suite_contact());
+    srunner_add_suite(sr, suite_status());
+    srunner_add_suite(sr, suite_kinematic());
+    srunner_add_suite(sr, suite_world_def());
     srunner_run_all(sr, CK_NORMAL);
     failed = srunner_ntests_failed(sr);
     srunner_free(sr);

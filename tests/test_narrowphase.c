@@ -266,6 +266,124 @@ START_TEST(test_separation_is_a_lower_bound_of_the_distance)
 }
 END_TEST
 
+/* Concentric circles: every direction separates them equally, so the
+ * normal is any unit vector; the depth is the sum of the radii. */
+START_TEST(test_concentric_circles_have_a_unit_normal_and_full_depth)
+{
+    tshape a = make_circle(2, -1, 0.75f), b = make_circle(2, -1, 0.5f);
+    cr_manifold m;
+    ck_assert_int_eq(collide(&a, &b, 0.0f, &m), 1);
+    ck_assert_int_eq(m.count, 1);
+    ck_assert_close(hypot(m.n.x, m.n.y), 1.0, 1e-7);
+    ck_assert_close(m.pts[0].sep, -1.25, 1e-7);
+    /* the point lies on the common centres' normal line, within a */
+    ck_assert(hypot(m.pts[0].p.x - 2.0, m.pts[0].p.y + 1.0) <= 0.75 + 1e-6);
+}
+END_TEST
+
+/* Two boxes corner to corner, apart by gx along x and gy < gx along y, in
+ * each of the four diagonal directions and both orders: no face overlaps
+ * the other sideways, so there is one point, the nearer corner; its
+ * separation is the separating-axis gap gx (never more than the corners'
+ * distance sqrt(gx^2 + gy^2)) along the normal +-x, from a to b. */
+START_TEST(test_boxes_corner_to_corner_give_one_point_at_the_axis_gap)
+{
+    const double gx = 0.1, gy = 0.05;
+    int sx, sy, order;
+    for (sx = -1; sx <= 1; sx += 2)
+        for (sy = -1; sy <= 1; sy += 2)
+            for (order = 0; order < 2; ++order) {
+                tshape big = make_box(0, 0, 1, 1, 0);
+                tshape small = make_box((float)(sx * (1.5 + gx)), (float)(sy * (1.5 + gy)),
+                                        0.5f, 0.5f, 0);
+                const tshape *a = order ? &small : &big, *b = order ? &big : &small;
+                double dir = order ? -sx : sx; /* from a to b along x */
+                cr_manifold m;
+                ck_assert_msg(collide(a, b, 0.3f, &m), "(%d, %d, %d): no contact", sx, sy, order);
+                ck_assert_int_eq(m.count, 1);
+                ck_assert_msg(fabs(m.n.x - dir) < 1e-6 && fabs(m.n.y) < 1e-6,
+                              "(%d, %d, %d): normal (%g, %g)", sx, sy, order,
+                              (double)m.n.x, (double)m.n.y);
+                ck_assert_close(m.pts[0].sep, gx, 1e-6);
+                ck_assert(m.pts[0].sep <= hypot(gx, gy));
+                /* the point is midway across the gap */
+                ck_assert_close(m.pts[0].p.x, sx * (1.0 + 0.5 * gx), 1e-5);
+                /* out of reach: nothing */
+                ck_assert(!collide(a, b, 0.05f, &m));
+            }
+}
+END_TEST
+
+/* A tilted square whose lowest corner hangs past the end of a face, above
+ * it by 0.01, while the rest of its bottom edge rises over the face: the
+ * distance between the two is from the face's end corner (1, 1) to that
+ * edge, worked out here in double; within a reach below it there is no
+ * point, above it there is one within reach. */
+START_TEST(test_corner_hanging_past_a_face_end_counts_its_true_distance)
+{
+    const double phi = 0.2, h = 0.5, lx = 1.1, ly = 1.01;
+    /* centre of the square turned by phi whose corner (h, -h) is lowest
+     * after turning by -phi... choose the turn -phi: corner (h, -h) goes
+     * to (h cos + h sin, -h cos + h sin) */
+    double c = cos(phi), s = sin(phi);
+    double kx = h * c - h * s, ky = -h * s - h * c; /* corner (h, -h) turned by -phi */
+    double cx = lx - kx, cy = ly - ky;
+    /* the other end of the bottom edge: corner (-h, -h) turned by -phi */
+    double ox = cx + (-h * c - h * s), oy = cy + (h * s - h * c);
+    /* distance from (1, 1) to the segment (lx, ly)-(ox, oy) */
+    double ex = ox - lx, ey = oy - ly, u = ((1.0 - lx) * ex + (1.0 - ly) * ey) / (ex * ex + ey * ey);
+    double dist = hypot(lx + u * ex - 1.0, ly + u * ey - 1.0);
+    tshape ground = make_box(0, 0, 1, 1, 0);
+    tshape tilt = make_box((float)cx, (float)cy, (float)h, (float)h, (float)-phi);
+    cr_manifold m;
+    ck_assert(oy > ly && u > 0.0 && u < 1.0);
+    ck_assert(dist > 0.02 && dist < 0.04);
+    ck_assert(cr_collide(&ground.info.shape, ground.b.x, ground.b.q, &tilt.info.shape,
+                         tilt.b.x, tilt.b.q, (float)(dist - 0.005), 0.05f, &m) == 0);
+    ck_assert(cr_collide(&ground.info.shape, ground.b.x, ground.b.q, &tilt.info.shape,
+                         tilt.b.x, tilt.b.q, (float)(dist + 0.005), 0.05f, &m) > 0);
+    ck_assert(m.pts[0].sep <= dist + 0.005);
+}
+END_TEST
+
+/* Two boxes corner to corner (gaps 0.1 along x, 0.05 along y): the one
+ * speculative point lies between the two facing corners, whichever
+ * diagonal and order (for parallel edges both ends of the incident edge
+ * are equally deep: the end nearer the reference face along it is the
+ * corner). */
+START_TEST(test_corner_to_corner_point_lies_between_the_corners)
+{
+    const double gx = 0.1, gy = 0.05;
+    int sx, sy, order;
+    for (sx = -1; sx <= 1; sx += 2)
+        for (sy = -1; sy <= 1; sy += 2)
+            for (order = 0; order < 2; ++order) {
+                carom_body_def d = carom_default_body_def();
+                cr_body bb, sb;
+                cr_body_info bi, si;
+                cr_manifold m;
+                int hit;
+                carom_body_def_set_box(&d, 1.0f, 1.0f);
+                ck_assert_int_eq(cr_body_build(&d, &bb, &bi), CAROM_OK);
+                carom_body_def_set_box(&d, 0.5f, 0.5f);
+                d.position.x = (float)(sx * (1.5 + gx));
+                d.position.y = (float)(sy * (1.5 + gy));
+                ck_assert_int_eq(cr_body_build(&d, &sb, &si), CAROM_OK);
+                hit = order ? cr_collide(&si.shape, sb.x, sb.q, &bi.shape, bb.x, bb.q, 0.3f, 0.0f, &m)
+                            : cr_collide(&bi.shape, bb.x, bb.q, &si.shape, sb.x, sb.q, 0.3f, 0.0f, &m);
+                ck_assert_int_eq(hit, 1);
+                /* the big box's corner is at (sx, sy), the small one's at
+                 * (sx (1 + gx), sy (1 + gy)) */
+                ck_assert_msg(fabs(m.pts[0].p.y) >= 1.0 - 1e-6 &&
+                                  fabs(m.pts[0].p.y) <= 1.0 + gy + 1e-6 &&
+                                  m.pts[0].p.y * sy > 0.0,
+                              "(%d, %d, %d): point (%g, %g), not between (%d, %d) and (%g, %g)",
+                              sx, sy, order, (double)m.pts[0].p.x, (double)m.pts[0].p.y,
+                              sx, sy, sx * (1.0 + gx), sy * (1.0 + gy));
+            }
+}
+END_TEST
+
 Suite *suite_narrowphase(void)
 {
     Suite *s = suite_create("narrowphase");
@@ -279,12 +397,16 @@ Suite *suite_narrowphase(void)
     tcase_add_test(tc, test_box_on_box_gives_two_points_on_the_face);
     tcase_add_test(tc, test_tilted_box_corner_gives_one_point);
     tcase_add_test(tc, test_separated_polygons_are_no_contact);
+    tcase_add_test(tc, test_corner_to_corner_point_lies_between_the_corners);
     tcase_add_test(tc, test_box_box_side_by_side_normal_points_from_a_to_b);
     tcase_add_test(tc, test_manifold_does_not_depend_on_where_the_pair_sits);
     tcase_add_test(tc, test_aligned_faces_keep_the_first_body_as_reference);
     tcase_add_test(tc, test_clipped_points_of_a_symmetric_pair_are_exact_mirrors);
     tcase_add_test(tc, test_polygons_within_reach_give_speculative_points);
     tcase_add_test(tc, test_separation_is_a_lower_bound_of_the_distance);
+    tcase_add_test(tc, test_concentric_circles_have_a_unit_normal_and_full_depth);
+    tcase_add_test(tc, test_boxes_corner_to_corner_give_one_point_at_the_axis_gap);
+    tcase_add_test(tc, test_corner_hanging_past_a_face_end_counts_its_true_distance);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -119,12 +119,47 @@ END_TEST
 
 #endif
 
+/* Every build names the operation kinds and phases the tools print, each
+ * distinct, and says "unknown" past the end; missing pointers are refused
+ * or ignored. */
+START_TEST(test_op_and_phase_names_are_distinct_and_bounded)
+{
+    carom_op_weights w;
+    int i, j;
+    for (i = 0; i < CAROM_OP_COUNT; ++i) {
+        ck_assert(strlen(carom_op_name((carom_op)i)) > 0);
+        ck_assert_str_ne(carom_op_name((carom_op)i), "unknown");
+        for (j = 0; j < i; ++j)
+            ck_assert_str_ne(carom_op_name((carom_op)i), carom_op_name((carom_op)j));
+    }
+    for (i = 0; i < CAROM_PHASE_COUNT; ++i) {
+        ck_assert(strlen(carom_phase_name((carom_phase)i)) > 0);
+        ck_assert_str_ne(carom_phase_name((carom_phase)i), "unknown");
+        for (j = 0; j < i; ++j)
+            ck_assert_str_ne(carom_phase_name((carom_phase)i),
+                             carom_phase_name((carom_phase)j));
+    }
+    ck_assert_str_eq(carom_op_name(CAROM_OP_ADD), "add");
+    ck_assert_str_eq(carom_op_name((carom_op)CAROM_OP_COUNT), "unknown");
+    ck_assert_str_eq(carom_op_name((carom_op)-1), "unknown");
+    ck_assert_str_eq(carom_phase_name(CAROM_PHASE_BROADPHASE), "broadphase");
+    ck_assert_str_eq(carom_phase_name((carom_phase)CAROM_PHASE_COUNT), "unknown");
+    ck_assert_str_eq(carom_phase_name((carom_phase)-3), "unknown");
+    carom_profile_reset(NULL); /* nothing to clear: no crash */
+    ck_assert_int_eq(carom_world_set_profile(NULL, NULL), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_op_weights_preset("seed", NULL), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_op_weights_preset("cortex-m4f", &w), CAROM_OK);
+    ck_assert(carom_profile_cost(NULL, &w, CAROM_PHASE_COUNT) == 0.0f);
+}
+END_TEST
+
 Suite *suite_profile(void)
 {
     Suite *s = suite_create("profile");
     TCase *tc = tcase_create("counts");
     tcase_add_test(tc, test_seed_preset_is_the_design_notes_table);
     tcase_add_test(tc, test_cost_is_the_weighted_sum_of_counts);
+    tcase_add_test(tc, test_op_and_phase_names_are_distinct_and_bounded);
 #if CAROM_ENABLE_PROFILE
     tcase_add_test(tc, test_root_of_linear_and_quadratic_gap_counts);
 #else

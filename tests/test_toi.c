@@ -369,6 +369,31 @@ START_TEST(test_root2_requires_a_positive_gap)
 }
 END_TEST
 
+START_TEST(test_root2_non_finite_input_has_no_root)
+{
+    float s = -1.0f;
+    ck_assert_int_eq(cr_first_down_root2(NAN, -1.0f, 0.0f, 1.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(1.0f, -INFINITY, 0.0f, 1.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(1.0f, -1.0f, NAN, 1.0f, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(1.0f, -4.0f, 1.0f, INFINITY, &s), 0);
+    ck_assert_int_eq(cr_first_down_root2(INFINITY, -1.0f, 0.0f, 1.0f, &s), 0);
+    ck_assert(s == -1.0f);
+}
+END_TEST
+
+/* 1e-20 - 1e-30 s^2: the root is at sqrt(1e10) = 1e5, far beyond the
+ * range; c2 c0 is below float's range, the discriminant rounds to 0. */
+START_TEST(test_root2_underflowing_discriminant_far_root_is_none)
+{
+    float s = -1.0f;
+    ck_assert(down_root2_d(1e-20, 0.0, -1e-30, 10.0) < 0.0);
+    ck_assert_int_eq(cr_first_down_root2(1e-20f, 0.0f, -1e-30f, 10.0f, &s), 0);
+    /* the same shape in range: 1 - s^2 meets 0 at 1, decreasing */
+    ck_assert_int_eq(cr_first_down_root2(1.0f, 0.0f, -1.0f, 10.0f, &s), 1);
+    ck_assert_close(s, 1.0, 1e-7);
+}
+END_TEST
+
 /* ---- cr_first_root4 ------------------------------------------------------------- */
 
 /* Common check: found, no later than the true root, and within rel. */
@@ -500,6 +525,136 @@ START_TEST(test_root4_always_terminates_inside_the_range_before_the_root)
         }
     }
     ck_assert_int_gt(reported, 10);
+}
+END_TEST
+
+START_TEST(test_root4_non_finite_input_or_empty_range_has_no_root)
+{
+    float c[5] = {1.0f, -4.0f, 1.0f, 0.0f, 0.0f}, s = -1.0f;
+    int k;
+    ck_assert(first_root4_scan(c, 1.0) > 0.0);
+    for (k = 0; k < 5; ++k) {
+        float keep = c[k];
+        c[k] = k % 2 ? INFINITY : NAN;
+        ck_assert_msg(cr_first_root4(c, 1.0f, &s) == 0, "c[%d] not finite", k);
+        c[k] = keep;
+    }
+    ck_assert_int_eq(cr_first_root4(c, NAN, &s), 0);
+    ck_assert_int_eq(cr_first_root4(c, 0.0f, &s), 0);
+    ck_assert_int_eq(cr_first_root4(c, -1.0f, &s), 0);
+    ck_assert(s == -1.0f);
+    ck_assert_int_eq(cr_first_root4(c, 1.0f, &s), 1);
+}
+END_TEST
+
+/* 1 + 1e30 s^4 overflows float before the end of the range: the search
+ * stops at an instant known to be before any root (there is none: the
+ * polynomial is positive), inside [0, hi]. */
+START_TEST(test_root4_overflow_inside_the_range_stops_before_any_root)
+{
+    float c[5] = {1.0f, 0.0f, 0.0f, 0.0f, 1e30f}, s = -1.0f;
+    ck_assert(poly4_d(c, 1000.0) > 3.4e38);
+    if (cr_first_root4(c, 1000.0f, &s)) {
+        ck_assert(s >= 0.0f && s <= 1000.0f);
+        ck_assert(poly4_d(c, s) > 0.0);
+    }
+    /* 1 - 4 s + 1e-3 s^4 meets 0 near 0.25 and overflows from s ~ 2e10:
+     * over [0, 1e12] the answer may be early, never after the root */
+    c[0] = 1.0f;
+    c[1] = -4.0f;
+    c[4] = 1e-3f;
+    ck_assert(poly4_d(c, 1e12) > 3.4e38);
+    s = -1.0f;
+    ck_assert_int_eq(cr_first_root4(c, 1e12f, &s), 1);
+    ck_assert(s >= 0.0f && (double)s <= first_root4_scan(c, 1.0));
+    /* and over a range without overflow it is the root */
+    assert_root4(c, 1.0f, 1e-5);
+    /* f stays finite at the end of [0, 0.5] but its slope bound 12 c4 b^2
+     * does not: stop before any root (f > 0 throughout) */
+    c[0] = 1.0f;
+    c[1] = 0.0f;
+    c[4] = 3.0e38f;
+    s = -1.0f;
+    if (cr_first_root4(c, 0.5f, &s))
+        ck_assert(s >= 0.0f && s <= 0.5f);
+}
+END_TEST
+
+/* (s - 0.5)^2 (1 + s^2) touches zero at 0.5 without crossing it: a graze.
+ * The search either finds nothing or stops before 0.5, within its budget
+ * of tests and its fixed stack, however close to the touch it goes. */
+START_TEST(test_root4_touching_double_root_stops_before_it_within_budget)
+{
+    /* (s^2 - s + 0.25)(1 + s^2) = 0.25 - s + 1.25 s^2 - s^3 + s^4 */
+    float c[5] = {0.25f, -1.0f, 1.25f, -1.0f, 1.0f}, s = -1.0f;
+    double x;
+    for (x = 0.0; x <= 1.0; x += 1.0 / 1024.0)
+        ck_assert(poly4_d(c, x) >= 0.0);
+    if (cr_first_root4(c, 1.0f, &s))
+        ck_assert_msg(s >= 0.0f && s <= 0.5f, "s = %.9g", (double)s);
+    /* a whole family of grazes at different instants and heights */
+    for (x = 0.05; x < 1.0; x += 0.05) {
+        double e2 = x * x;
+        float g[5];
+        g[0] = (float)e2;
+        g[1] = (float)(-2.0 * x);
+        g[2] = (float)(1.0 + e2);
+        g[3] = (float)(-2.0 * x);
+        g[4] = 1.0f;
+        s = -1.0f;
+        if (cr_first_root4(g, 1.0f, &s))
+            ck_assert_msg(s >= 0.0f && (double)s <= x + 1e-6, "graze at %g: s = %.9g", x, (double)s);
+    }
+}
+END_TEST
+
+/* A falling leading term: 1 - s^4 meets 0 at s = 1. */
+START_TEST(test_root4_negative_leading_coefficient_meets_zero_at_one)
+{
+    float c[5] = {1.0f, 0.0f, 0.0f, 0.0f, -1.0f};
+    ck_assert_close(first_root4_scan(c, 2.0), 1.0, 1e-9);
+    assert_root4(c, 2.0f, 1e-6);
+}
+END_TEST
+
+/* A root a billionth of the range from 0: the bisection's 40 halvings of
+ * the first bracket (hi / 64) end within 2^-46 hi of it, never after. */
+START_TEST(test_root4_root_near_zero_is_bisected_to_the_full_depth)
+{
+    float c[5] = {1e-9f, -1.0f, 0.0f, 0.0f, 1.0f}, s = -1.0f;
+    double e = first_root4_scan(c, 1.0);
+    ck_assert_close(e, (double)1e-9f, 1e-15);
+    ck_assert_int_eq(cr_first_root4(c, 1.0f, &s), 1);
+    ck_assert_msg((double)s <= e && e - (double)s <= ldexp(1.0, -46),
+                  "s = %.12g, root %.12g", (double)s, e);
+}
+END_TEST
+
+/* Two grazes close together, (s - 0.335)^2 (s - 0.386)^2 scaled by 0.158,
+ * keep the search busy until its budget of 256 tests runs out; a graze at
+ * 1e-15 from the start, (s - 1e-15)^2 with c0 = 1e-30, takes it 48
+ * halvings deep, the size of its stack. Either way it stops, inside the
+ * range, at an instant before the first root the double-precision scan
+ * sees (for the second there is none: its dip, 4e-39 deep, is below float
+ * resolution). */
+START_TEST(test_root4_long_searches_stop_within_budget_and_stack)
+{
+    static const float cases[][5] = {
+        {0.00265011191f, -0.0295527149f, 0.123377755f, -0.228541598f, 0.158489317f},
+        {1e-30f, -2e-15f, 1.0f, 0.0f, 0.0f},
+        {1e-36f, -2e-18f, 1.0f, 0.0f, 0.0f},
+    };
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        float s = -1.0f;
+        double e = first_root4_scan(cases[i], 1.0);
+        if (!cr_first_root4(cases[i], 1.0f, &s))
+            continue;
+        ck_assert_msg(s >= 0.0f && s <= 1.0f, "case %d: s = %g", (int)i, (double)s);
+        if (e >= 0.0)
+            ck_assert_msg((double)s <= e + 1e-7, "case %d: s = %.9g after the root %.9g",
+                          (int)i, (double)s, e);
+    }
 }
 END_TEST
 
@@ -718,6 +873,123 @@ START_TEST(test_toi_passing_bodies_miss)
 }
 END_TEST
 
+/* Circles already touching at the start of the search are the contact
+ * solver's: no impact time. */
+START_TEST(test_toi_circles_already_touching_have_no_impact)
+{
+    tb a = make_circle(0, 0, 0.5, CAROM_BODY_DYNAMIC);
+    tb b = make_circle(0.9, 0, 0.5, CAROM_BODY_DYNAMIC);
+    float toi = -1.0f;
+    set_motion(&b, -1, 0, 0, 0, 0);
+    ck_assert_int_eq(toi_of(&a, &b, 0.0f, 1.0f, 1e-4f, &toi), 0);
+    set_motion(&b, -1, 0, 0, 0, -3); /* the quartic path */
+    set_motion(&a, 0, 0, 0, 0, 2);
+    ck_assert_int_eq(toi_of(&a, &b, 0.0f, 1.0f, 1e-4f, &toi), 0);
+}
+END_TEST
+
+/* A ball falling at x = -0.9 over a box of half-width 1 passes within its
+ * radius of the corner (-1, 1) after hitting the top face: the face comes
+ * first, at 1.25 = 2 - t - 5 t^2 ... from y = 2 at speed 1, g = 10. */
+START_TEST(test_toi_ball_near_a_corner_meets_the_face_before_the_corner)
+{
+    tb box = make_box(0, 0, 1, 1, 0, CAROM_BODY_STATIC);
+    tb ball = make_circle(-0.9, 2.5, 0.25, CAROM_BODY_DYNAMIC);
+    double h = 2.5 - 1.0 - 0.25, e = (-1.0 + sqrt(1.0 + 20.0 * h)) / 10.0;
+    float toi = -1.0f;
+    set_motion(&ball, 0, -1, 0, 0, -10);
+    ck_assert_int_eq(toi_of(&box, &ball, 0.0f, 2.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-6);
+    ck_assert_int_eq(toi_of(&ball, &box, 0.0f, 2.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-6);
+    /* at x = 1.1 (past the right face, within r of the corner (1, 1)) the
+     * corner is met first: |(0.1, y - 1)| = 0.25 */
+    ball = make_circle(1.1, 2.5, 0.25, CAROM_BODY_DYNAMIC);
+    set_motion(&ball, 0, -1, 0, 0, -10);
+    h = 2.5 - 1.0 - sqrt(0.25 * 0.25 - 0.1 * 0.1);
+    e = (-1.0 + sqrt(1.0 + 20.0 * h)) / 10.0;
+    ck_assert_int_eq(toi_of(&box, &ball, 0.0f, 2.0f, 1e-4f, &toi), 1);
+    ck_assert_close(toi, e, 1e-5);
+}
+END_TEST
+
+/* A box tilted by 0.3 rad (not turning) falls at a constant 2 m/s onto a
+ * static floor: its lowest corner, hy cos + hx sin below the centre,
+ * arrives first; its other corners later. */
+START_TEST(test_toi_tilted_box_lands_on_its_lowest_corner)
+{
+    const double hx = 0.6, hy = 0.4, cy = 3.0;
+    int k;
+    for (k = -1; k <= 1; k += 2) { /* tilted either way: another corner is lowest */
+        double a = 0.3 * k;
+        tb floor_ = make_box(0, 0, 5, 0.5, 0, CAROM_BODY_STATIC);
+        tb box = make_box(0.2, cy, hx, hy, a, CAROM_BODY_DYNAMIC);
+        double low = cy - (hy * cos(a) + hx * sin(fabs(a)));
+        double e = (low - 0.5) / 2.0;
+        float toi = -1.0f;
+        set_motion(&box, 0, -2, 0, 0, 0);
+        ck_assert_int_eq(toi_of(&floor_, &box, 0.0f, 2.0f, 1e-4f, &toi), 1);
+        ck_assert_close(toi, e, 1e-6);
+        ck_assert_int_eq(toi_of(&box, &floor_, 0.0f, 2.0f, 1e-4f, &toi), 1);
+        ck_assert_close(toi, e, 1e-6);
+    }
+}
+END_TEST
+
+/* A diamond (a square on its corner) spinning just above a floor: its
+ * lowest corner moves sideways, then rises, so it never strikes the floor
+ * although it starts within the tolerance of it: a graze, no impact. */
+START_TEST(test_toi_spinning_diamond_grazing_a_floor_has_no_impact)
+{
+    const float tol = 1e-3f;
+    const double h = 0.5, d = h * sqrt(2.0);
+    tb floor_ = make_box(0, 0, 5, 0.5, 0, CAROM_BODY_STATIC);
+    tb diamond = make_box(0, 0.5 + d + 0.5 * tol, h, h, 0.78539816339744831, CAROM_BODY_DYNAMIC);
+    float toi = -1.0f;
+    int i;
+    set_motion(&diamond, 0, 0, 2, 0, 0);
+    /* lowest point over the next 0.5 s (turning by up to 1 rad): never
+     * below its start */
+    for (i = 0; i <= 100; ++i) {
+        double t = 0.5 * i / 100.0, ang = 0.78539816339744831 + 2.0 * t, lowest = 1e9;
+        int k;
+        for (k = 0; k < 4; ++k) {
+            double vx = (k == 0 || k == 3) ? -h : h, vy = k < 2 ? -h : h;
+            double y = (double)diamond.b.x.y + sin(ang) * vx + cos(ang) * vy;
+            lowest = y < lowest ? y : lowest;
+        }
+        ck_assert(lowest >= 0.5 + 0.5 * tol - 1e-6);
+    }
+    ck_assert_int_eq(toi_of(&floor_, &diamond, 0.0f, 0.5f, tol, &toi), 0);
+    ck_assert_int_eq(toi_of(&diamond, &floor_, 0.0f, 0.5f, tol, &toi), 0);
+}
+END_TEST
+
+/* Conservative advancement refuses what it cannot bound: a spin whose
+ * speed bound overflows float, a spin too slow to move at all (the bodies
+ * at rest apart never meet), and bodies too far apart for a finite
+ * separation. None of these loops or reports an impact. */
+START_TEST(test_toi_advancement_without_a_finite_bound_reports_nothing)
+{
+    tb floor_ = make_box(0, 0, 5, 0.5, 0, CAROM_BODY_STATIC);
+    tb spin = make_box(0, 2, 1, 1, 0.2, CAROM_BODY_DYNAMIC);
+    tb still = make_box(0, 2, 0.25, 0.25, 0.2, CAROM_BODY_DYNAMIC);
+    float toi = -1.0f;
+    set_motion(&spin, 0, -1, 3.0e38, 0, 0);
+    ck_assert_int_eq(toi_of(&floor_, &spin, 0.0f, 1.0f, 1e-4f, &toi), 0);
+    /* 1.4e-45 rad/s times its extent 0.35 m rounds to 0 m/s */
+    set_motion(&still, 0, 0, 1.4e-45, 0, 0);
+    ck_assert(still.b.w > 0.0f);
+    ck_assert_int_eq(toi_of(&floor_, &still, 0.0f, 1.0f, 1e-4f, &toi), 0);
+    /* 3e38 m apart on each side: the offset between them is not finite */
+    set_motion(&spin, 0, 0, 1, 0, 0);
+    spin.b.x.x = 3.0e38f;
+    floor_.b.x.x = -3.0e38f;
+    ck_assert_int_eq(toi_of(&floor_, &spin, 0.0f, 1.0f, 1e-4f, &toi), 0);
+    ck_assert(toi == -1.0f);
+}
+END_TEST
+
 Suite *suite_toi(void)
 {
     Suite *s = suite_create("toi");
@@ -735,6 +1007,8 @@ Suite *suite_toi(void)
     tcase_add_test(r2, test_root2_root_beyond_hi_is_none);
     tcase_add_test(r2, test_root2_negative_roots_are_never_reported);
     tcase_add_test(r2, test_root2_requires_a_positive_gap);
+    tcase_add_test(r2, test_root2_non_finite_input_has_no_root);
+    tcase_add_test(r2, test_root2_underflowing_discriminant_far_root_is_none);
     suite_add_tcase(s, r2);
     tcase_add_test(r4, test_root4_circles_with_different_accelerations_first_contact);
     tcase_add_test(r4, test_root4_two_roots_in_range_returns_the_first);
@@ -743,6 +1017,12 @@ Suite *suite_toi(void)
     tcase_add_test(r4, test_root4_sign_change_over_the_range_is_a_root);
     tcase_add_test(r4, test_root4_requires_a_positive_constant_term);
     tcase_add_test(r4, test_root4_always_terminates_inside_the_range_before_the_root);
+    tcase_add_test(r4, test_root4_non_finite_input_or_empty_range_has_no_root);
+    tcase_add_test(r4, test_root4_overflow_inside_the_range_stops_before_any_root);
+    tcase_add_test(r4, test_root4_touching_double_root_stops_before_it_within_budget);
+    tcase_add_test(r4, test_root4_negative_leading_coefficient_meets_zero_at_one);
+    tcase_add_test(r4, test_root4_root_near_zero_is_bisected_to_the_full_depth);
+    tcase_add_test(r4, test_root4_long_searches_stop_within_budget_and_stack);
     suite_add_tcase(s, r4);
     tcase_add_test(tc, test_toi_circles_head_on_gap_over_closing_speed);
     tcase_add_test(tc, test_toi_is_a_step_time_when_searching_from_a_later_t0);
@@ -753,6 +1033,11 @@ Suite *suite_toi(void)
     tcase_add_test(tc, test_toi_projectile_onto_static_circle_is_not_missed);
     tcase_add_test(tc, test_toi_rotating_box_stops_within_tolerance_before_contact);
     tcase_add_test(tc, test_toi_passing_bodies_miss);
+    tcase_add_test(tc, test_toi_circles_already_touching_have_no_impact);
+    tcase_add_test(tc, test_toi_ball_near_a_corner_meets_the_face_before_the_corner);
+    tcase_add_test(tc, test_toi_tilted_box_lands_on_its_lowest_corner);
+    tcase_add_test(tc, test_toi_spinning_diamond_grazing_a_floor_has_no_impact);
+    tcase_add_test(tc, test_toi_advancement_without_a_finite_bound_reports_nothing);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -78,6 +78,79 @@ START_TEST(test_rot_from_non_finite_angle_is_identity)
 }
 END_TEST
 
+/* Beyond 6000 rad whole turns are taken off first: a - q 2pi, with 2pi a
+ * float (1.75e-7 too large) and the product rounded (half an ulp of |a|);
+ * the difference is exact. The rotation is that of the reduced angle. */
+START_TEST(test_rot_from_large_angle_matches_sin_cos_within_its_rounding)
+{
+    static const float angles[] = {6000.5f, 12345.678f, -23456.5f, 1.0e5f, -3.0e5f};
+    /* from 2^24 turns on the count itself rounds: only |q| = 1 is left */
+    static const float huge[] = {9.87654e6f, -1.0e8f, 9.9e8f};
+    size_t i;
+    for (i = 0; i < sizeof huge / sizeof huge[0]; ++i) {
+        carom_rot r = carom_rot_from_angle(huge[i]);
+        ck_assert_msg(fabs(sqrt((double)r.c * r.c + (double)r.s * r.s) - 1.0) < 2.5e-7,
+                      "|rot(%g)| is not 1", (double)huge[i]);
+    }
+    for (i = 0; i < sizeof angles / sizeof angles[0]; ++i) {
+        float a = angles[i];
+        carom_rot r = carom_rot_from_angle(a);
+        /* the bound: the turn count times the float error of 2 pi (1.75e-7),
+         * the rounding of that product and of the difference (2 ulp of |a|) */
+        double turns = fabs((double)a) / (2.0 * PI);
+        double tol = turns * 1.75e-7 + 2.0 * fabs((double)a) * ldexp(1.0, -24) + 5e-7;
+        ck_assert_msg(fabs(r.c - cos((double)a)) <= tol, "cos(%g): %.9g, expected %.9g (tol %.3g)",
+                      (double)a, (double)r.c, cos((double)a), tol);
+        ck_assert_msg(fabs(r.s - sin((double)a)) <= tol, "sin(%g): %.9g, expected %.9g (tol %.3g)",
+                      (double)a, (double)r.s, sin((double)a), tol);
+        ck_assert_msg(fabs(sqrt((double)r.c * r.c + (double)r.s * r.s) - 1.0) < 2.5e-7,
+                      "|rot(%g)| is not 1", (double)a);
+    }
+}
+END_TEST
+
+/* Above 1e9 rad a float angle is a multiple of 64 rad: its fractional turn
+ * is noise, and the rotation is the identity (documented in trig.c). */
+START_TEST(test_rot_from_angle_beyond_1e9_is_identity)
+{
+    carom_rot r = carom_rot_from_angle(2.0e9f);
+    ck_assert(r.c == 1.0f && r.s == 0.0f);
+    r = carom_rot_from_angle(-3.0e30f);
+    ck_assert(r.c == 1.0f && r.s == 0.0f);
+    r = carom_rot_from_angle(-INFINITY);
+    ck_assert(r.c == 1.0f && r.s == 0.0f);
+}
+END_TEST
+
+/* The zero "rotation" (not a unit vector) has no angle; 0 is returned. */
+START_TEST(test_rot_angle_of_the_zero_vector_is_zero)
+{
+    carom_rot r;
+    r.c = 0.0f;
+    r.s = 0.0f;
+    ck_assert(carom_rot_angle(r) == 0.0f);
+    r.c = -0.0f;
+    r.s = -0.0f;
+    ck_assert(carom_rot_angle(r) == 0.0f);
+}
+END_TEST
+
+/* The angle does not depend on the length of (c, s): atan2 is scale-free. */
+START_TEST(test_rot_angle_ignores_the_length_of_the_vector)
+{
+    int i;
+    for (i = 0; i < 16; ++i) {
+        double t = -PI + (i + 0.5) * PI / 8.0;
+        double k = i % 2 ? 1e-3 : 250.0;
+        carom_rot r;
+        r.c = (float)(k * cos(t));
+        r.s = (float)(k * sin(t));
+        ck_assert_msg(fabs((double)carom_rot_angle(r) - atan2(r.s, r.c)) < 5e-7,
+                      "angle of %g (%g, %g)", t, (double)r.c, (double)r.s);
+    }
+}
+END_TEST
+
 Suite *suite_trig(void)
 {
     Suite *s = suite_create("trig");
@@ -88,6 +161,10 @@ Suite *suite_trig(void)
     tcase_add_test(tc, test_rot_angle_matches_atan2_in_every_quadrant);
     tcase_add_test(tc, test_rot_angle_on_the_axes_is_exact_multiple_of_half_pi);
     tcase_add_test(tc, test_rot_from_non_finite_angle_is_identity);
+    tcase_add_test(tc, test_rot_from_large_angle_matches_sin_cos_within_its_rounding);
+    tcase_add_test(tc, test_rot_from_angle_beyond_1e9_is_identity);
+    tcase_add_test(tc, test_rot_angle_of_the_zero_vector_is_zero);
+    tcase_add_test(tc, test_rot_angle_ignores_the_length_of_the_vector);
     suite_add_tcase(s, tc);
     return s;
 }

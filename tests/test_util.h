@@ -117,5 +117,9 @@ Suite *suite_toi(void);
 Suite *suite_profile(void);
 Suite *suite_robust(void);
 Suite *suite_api(void);
+Suite *suite_contact(void);
+Suite *suite_status(void);
+Suite *suite_kinematic(void);
+Suite *suite_world_def(void);
 
 #endif

@@ -1,0 +1,205 @@
+/*
+ * test_contact.c -- contacts (src/contact.c): the 2x2 complementarity
+ * problem of a two-point manifold against an independent double-precision
+ * solution, and the contact capacity as a clean failure of the step.
+ */
+#include <string.h>
+
+#include "test_util.h"
+
+#include "contact.h"
+
+Suite *suite_contact(void);
+
+/* ---- cr_lcp2 ---------------------------------------------------------------- */
+
+/* The LCP x >= 0, y = K x + b >= 0, x_i y_i = 0 for symmetric positive
+ * definite K has exactly one solution; found here by testing the four
+ * supports in double precision (Cramer's rule for both pushing). */
+static void lcp2_d(double k11, double k12, double k22, double b1, double b2,
+                   double *x1, double *x2)
+{
+    double det = k11 * k22 - k12 * k12;
+    double y1 = (k12 * b2 - k22 * b1) / det, y2 = (k12 * b1 - k11 * b2) / det;
+    if (y1 >= 0.0 && y2 >= 0.0) {
+        *x1 = y1;
+        *x2 = y2;
+    } else if (-b1 / k11 >= 0.0 && k12 * (-b1 / k11) + b2 >= 0.0) {
+        *x1 = -b1 / k11;
+        *x2 = 0.0;
+    } else if (-b2 / k22 >= 0.0 && k12 * (-b2 / k22) + b1 >= 0.0) {
+        *x1 = 0.0;
+        *x2 = -b2 / k22;
+    } else {
+        *x1 = 0.0;
+        *x2 = 0.0;
+    }
+}
+
+/* The conditions themselves, to the rounding of float inputs of size s. */
+static void assert_complementary(double k11, double k12, double k22, double b1,
+                                 double b2, float x1, float x2, double s,
+                                 const char *what)
+{
+    double y1 = k11 * x1 + k12 * x2 + b1, y2 = k12 * x1 + k22 * x2 + b2;
+    double tol = 1e-5 * s;
+    ck_assert_msg(x1 >= 0.0f && x2 >= 0.0f, "%s: x = (%g, %g)", what, (double)x1, (double)x2);
+    ck_assert_msg(y1 >= -tol && y2 >= -tol, "%s: y = (%g, %g)", what, y1, y2);
+    ck_assert_msg(fabs(x1 * y1) <= tol * (1.0 + x1) && fabs(x2 * y2) <= tol * (1.0 + x2),
+                  "%s: x.y = (%g, %g)", what, x1 * y1, x2 * y2);
+}
+
+/* One of each support: both points push, only the first, only the second,
+ * neither (both separating). */
+START_TEST(test_lcp2_each_support_against_the_closed_form)
+{
+    static const float cases[][5] = {
+        {2.0f, 0.5f, 1.0f, -1.0f, -1.0f},  /* both: x = -K^-1 b = (2/7, 6/7) */
+        {2.0f, 0.5f, 1.0f, -1.0f, 2.0f},   /* first only: x1 = 1/2, y2 = 9/4 */
+        {2.0f, 0.5f, 1.0f, 3.0f, -1.0f},   /* second only: x2 = 1, y1 = 7/2 */
+        {2.0f, 0.5f, 1.0f, 0.5f, 0.25f},   /* neither */
+        {1.0f, -0.9f, 1.0f, -1.0f, 0.5f},  /* negative coupling: both push */
+    };
+    static const double expected[][2] = {
+        {2.0 / 7.0, 6.0 / 7.0}, {0.5, 0.0}, {0.0, 1.0}, {0.0, 0.0}, {0.55 / 0.19, 0.4 / 0.19},
+    };
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        const float *c = cases[i];
+        float x1 = -1.0f, x2 = -1.0f;
+        double e1, e2;
+        lcp2_d(c[0], c[1], c[2], c[3], c[4], &e1, &e2);
+        /* the inputs are floats (-0.9f is not -0.9): agree to their rounding */
+        ck_assert_close(e1, expected[i][0], 1e-6);
+        ck_assert_close(e2, expected[i][1], 1e-6);
+        ck_assert_msg(cr_lcp2(c[0], c[1], c[2], c[3], c[4], &x1, &x2) == 1, "case %d", (int)i);
+        ck_assert_close(x1, e1, 1e-6);
+        ck_assert_close(x2, e2, 1e-6);
+        assert_complementary(c[0], c[1], c[2], c[3], c[4], x1, x2, 4.0, "case");
+    }
+}
+END_TEST
+
+/* Random well-conditioned rows (det K / (k11 k22) >= 1e-3, as the solver
+ * asks before solving a block): always solved, and the solution is the
+ * unique one. */
+START_TEST(test_lcp2_well_conditioned_rows_are_always_solved)
+{
+    unsigned long st = 99;
+    int i;
+    for (i = 0; i < 20000; ++i) {
+        float k11, k22, k12, b1, b2, x1, x2;
+        double e1, e2, rho;
+        st = (st * 1103515245ul + 12345ul) & 0x7fffffffu;
+        k11 = (float)(0.01 + 100.0 * (double)st / 2147483648.0);
+        st = (st * 1103515245ul + 12345ul) & 0x7fffffffu;
+        k22 = (float)(0.01 + 100.0 * (double)st / 2147483648.0);
+        st = (st * 1103515245ul + 12345ul) & 0x7fffffffu;
+        rho = -0.9995 + 1.999 * (double)st / 2147483648.0;
+        k12 = (float)(rho * sqrt((double)k11 * k22));
+        st = (st * 1103515245ul + 12345ul) & 0x7fffffffu;
+        b1 = (float)(-10.0 + 20.0 * (double)st / 2147483648.0);
+        st = (st * 1103515245ul + 12345ul) & 0x7fffffffu;
+        b2 = (float)(-10.0 + 20.0 * (double)st / 2147483648.0);
+        if (((double)k11 * k22 - (double)k12 * k12) < 1e-3 * (double)k11 * k22)
+            continue;
+        ck_assert_msg(cr_lcp2(k11, k12, k22, b1, b2, &x1, &x2) == 1,
+                      "K = [%g %g; %g %g], b = (%g, %g): no solution", (double)k11,
+                      (double)k12, (double)k12, (double)k22, (double)b1, (double)b2);
+        lcp2_d(k11, k12, k22, b1, b2, &e1, &e2);
+        /* the conditioning bounds the error: |dx| <= |K^-1| |db| */
+        ck_assert_msg(fabs(x1 - e1) <= 2e-3 * (1.0 + fabs(e1)) &&
+                          fabs(x2 - e2) <= 2e-3 * (1.0 + fabs(e2)),
+                      "K = [%g %g; %g %g], b = (%g, %g): x = (%g, %g), expected (%g, %g)",
+                      (double)k11, (double)k12, (double)k12, (double)k22, (double)b1,
+                      (double)b2, (double)x1, (double)x2, e1, e2);
+    }
+}
+END_TEST
+
+/* K singular to float's rounding (det K ~ 1e-6 of k11 k22): no support
+ * may fit any more; the result is then "none" (0) or a finite,
+ * non-negative impulse, never a NaN. */
+START_TEST(test_lcp2_nearly_singular_row_gives_none_or_a_finite_impulse)
+{
+    float x1 = -1.0f, x2 = -1.0f;
+    double det = 3.5999999 * 7.38999987 - 5.15790653 * 5.15790653;
+    ck_assert(fabs(det) < 1e-5 * 3.6 * 7.39);
+    if (cr_lcp2(3.5999999f, -5.15790653f, 7.38999987f, -6.38000011f, -8.10000038f, &x1, &x2)) {
+        ck_assert(x1 >= 0.0f && x2 >= 0.0f);
+        ck_assert(x1 - x1 == 0.0f && x2 - x2 == 0.0f);
+    }
+}
+END_TEST
+
+/* ---- contact capacity ------------------------------------------------------- */
+
+/* One contact fits: a ball resting on the floor has it; a second ball then
+ * lands during a step and needs another. That step fails with
+ * CAROM_ERR_CONTACT_CAPACITY and is not taken: every body, the time and
+ * the step count are as before it. The same with each method. */
+START_TEST(test_contact_capacity_fails_the_step_cleanly)
+{
+    int method;
+    for (method = 0; method < CAROM_METHOD_COUNT; ++method) {
+        carom_world_def wd = carom_default_world_def();
+        carom_body_def bd = carom_default_body_def();
+        carom_body_state before[3], after[3];
+        carom_status st = CAROM_OK;
+        float t0;
+        long n0;
+        int id[3], k, steps = 0;
+        tw t;
+        wd.method = (carom_method)method;
+        wd.max_bodies = 3;
+        wd.max_contacts = 1;
+        t = tw_make(&wd);
+        carom_body_def_set_box(&bd, 5.0f, 0.5f);
+        bd.type = CAROM_BODY_STATIC;
+        bd.position.y = -0.5f;
+        id[0] = tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        bd.position.x = -2.0f;
+        bd.position.y = 0.5f; /* resting on the floor */
+        id[1] = tw_add(&t, &bd);
+        bd.position.x = 2.0f;
+        bd.position.y = 1.5f; /* lands after about 0.45 s */
+        id[2] = tw_add(&t, &bd);
+        while (st == CAROM_OK && steps < 120) {
+            for (k = 0; k < 3; ++k)
+                before[k] = tw_state(&t, id[k]);
+            t0 = carom_world_time(t.w);
+            n0 = carom_world_step_count(t.w);
+            st = carom_world_step(t.w);
+            ++steps;
+        }
+        ck_assert_msg(st == CAROM_ERR_CONTACT_CAPACITY, "%s: %s after %d steps",
+                      carom_method_name((carom_method)method), carom_status_string(st), steps);
+        ck_assert_msg(steps > 1, "%s: the resting ball alone must fit",
+                      carom_method_name((carom_method)method));
+        for (k = 0; k < 3; ++k) {
+            after[k] = tw_state(&t, id[k]);
+            ck_assert_msg(memcmp(&before[k], &after[k], sizeof before[k]) == 0,
+                          "%s: body %d changed by the failed step",
+                          carom_method_name((carom_method)method), k);
+        }
+        ck_assert(carom_world_time(t.w) == t0);
+        ck_assert_int_eq(carom_world_step_count(t.w), n0);
+        tw_free(&t);
+    }
+}
+END_TEST
+
+Suite *suite_contact(void)
+{
+    Suite *s = suite_create("contact");
+    TCase *tc = tcase_create("lcp2");
+    TCase *tk = tcase_create("capacity");
+    tcase_add_test(tc, test_lcp2_each_support_against_the_closed_form);
+    tcase_add_test(tc, test_lcp2_well_conditioned_rows_are_always_solved);
+    tcase_add_test(tc, test_lcp2_nearly_singular_row_gives_none_or_a_finite_impulse);
+    tcase_add_test(tk, test_contact_capacity_fails_the_step_cleanly);
+    suite_add_tcase(s, tc);
+    suite_add_tcase(s, tk);
+    return s;
+}

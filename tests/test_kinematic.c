@@ -1,0 +1,242 @@
+/*
+ * test_kinematic.c -- kinematic bodies: they move with the velocity
+ * they were given, whatever gravity and collisions do, and act on dynamic
+ * bodies as bodies of infinite mass (a moving wall reflects a ball at
+ * (1 + e) V - e v, a moving floor drags a box up to its speed at mu g).
+ * Expected values are the closed forms of those statements.
+ */
+#include <string.h>
+
+#include "test_util.h"
+
+Suite *suite_kinematic(void);
+
+static tw world_with(carom_method method, float gy, int n)
+{
+    carom_world_def wd = carom_default_world_def();
+    wd.method = method;
+    wd.gravity.y = gy;
+    wd.max_bodies = n;
+    return tw_make(&wd);
+}
+
+/* A spinning, sliding kinematic box under gravity with a dynamic ball and
+ * a static wall in its way: after 2 s it is where x0 + v t and angle w t
+ * put it, its velocity unchanged, for every method. */
+START_TEST(test_kinematic_body_keeps_its_velocity_through_gravity_and_hits)
+{
+    int method;
+    for (method = 0; method < CAROM_METHOD_COUNT; ++method) {
+        tw t = world_with((carom_method)method, -10.0f, 3);
+        carom_body_def bd = carom_default_body_def();
+        carom_body_state s;
+        int kin, n = 120;
+        double time = n / 60.0;
+        carom_body_def_set_box(&bd, 0.5f, 0.5f);
+        bd.type = CAROM_BODY_KINEMATIC;
+        bd.position.x = -3.0f;
+        bd.velocity.x = 1.5f;
+        bd.velocity.y = 0.25f;
+        bd.angular_velocity = 0.75f;
+        kin = tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        bd.radius = 0.25f;
+        bd.position.x = -2.2f; /* in the box's way: struck at once */
+        bd.position.y = 0.3f;
+        tw_add(&t, &bd);
+        bd = carom_default_body_def(); /* a static wall it passes through */
+        carom_body_def_set_box(&bd, 0.1f, 3.0f);
+        bd.type = CAROM_BODY_STATIC;
+        bd.position.x = -1.0f;
+        tw_add(&t, &bd);
+        tw_steps(&t, n);
+        s = tw_state(&t, kin);
+        ck_assert_close(s.position.x, -3.0 + 1.5 * time, 1e-4);
+        ck_assert_close(s.position.y, 0.25 * time, 1e-4);
+        ck_assert_close(s.velocity.x, 1.5, 1e-6);
+        ck_assert_close(s.velocity.y, 0.25, 1e-6);
+        ck_assert_close(s.angular_velocity, 0.75, 1e-6);
+        ck_assert_close(carom_rot_angle(s.rotation), 0.75 * time, 1e-4);
+        tw_free(&t);
+    }
+}
+END_TEST
+
+/* A kinematic paddle moving at V = 2 m/s strikes a ball at rest head on
+ * (no gravity, no friction): the ball leaves at (1 + e) V, the paddle goes
+ * on at V. */
+START_TEST(test_kinematic_paddle_reflects_a_ball_at_one_plus_e_times_its_speed)
+{
+    static const float es[] = {1.0f, 0.5f, 0.0f};
+    int method;
+    size_t i;
+    for (method = 0; method < CAROM_METHOD_COUNT; ++method)
+        for (i = 0; i < sizeof es / sizeof es[0]; ++i) {
+            tw t = world_with((carom_method)method, 0.0f, 2);
+            carom_body_def bd = carom_default_body_def();
+            carom_body_state ball, paddle;
+            int p, b;
+            double expected = (1.0 + es[i]) * 2.0;
+            carom_body_def_set_box(&bd, 0.25f, 1.0f);
+            bd.type = CAROM_BODY_KINEMATIC;
+            bd.velocity.x = 2.0f;
+            bd.friction = 0.0f;
+            bd.restitution = es[i];
+            p = tw_add(&t, &bd);
+            bd = carom_default_body_def();
+            bd.position.x = 1.5f;
+            bd.friction = 0.0f;
+            bd.restitution = es[i];
+            b = tw_add(&t, &bd);
+            tw_steps(&t, 60); /* contact at 0.375 s; then 0.6 s on */
+            ball = tw_state(&t, b);
+            paddle = tw_state(&t, p);
+            ck_assert_msg(fabs(ball.velocity.x - expected) <= 1e-3 * expected + 1e-3,
+                          "%s, e = %g: ball at %.6g m/s, expected %.6g",
+                          carom_method_name((carom_method)method), (double)es[i],
+                          (double)ball.velocity.x, expected);
+            ck_assert_close(ball.velocity.y, 0.0, 1e-6);
+            ck_assert_close(paddle.velocity.x, 2.0, 1e-6);
+            ck_assert_close(paddle.position.x, 2.0, 1e-4);
+            /* never inside the paddle */
+            ck_assert(ball.center.x - paddle.position.x >= 0.25 + 0.5 - 1e-3);
+            tw_free(&t);
+        }
+}
+END_TEST
+
+/* A box set on a kinematic floor that moves at 2 m/s: friction mu = 0.5
+ * drags it at mu g = 5 m/s^2 until it moves with the floor, at 0.4 s, so
+ * at 1 s it has gone 0.4 + 2 x 0.6 = 1.6 m; it rides on and never falls
+ * asleep while carried (a box on a still floor does). */
+START_TEST(test_box_on_a_moving_kinematic_floor_is_dragged_to_its_speed_and_stays_awake)
+{
+    tw t = world_with(CAROM_METHOD_EVENTS, -10.0f, 4);
+    carom_body_def bd = carom_default_body_def();
+    carom_body_state s, f;
+    int floor_, box, still_floor, resting;
+    carom_body_def_set_box(&bd, 20.0f, 0.5f);
+    bd.type = CAROM_BODY_KINEMATIC;
+    bd.position.y = -0.5f;
+    bd.velocity.x = 2.0f;
+    bd.friction = 0.5f;
+    floor_ = tw_add(&t, &bd);
+    bd.type = CAROM_BODY_STATIC;
+    bd.velocity.x = 0.0f;
+    bd.position.y = -20.5f;
+    still_floor = tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    bd.position.y = 0.5f;
+    bd.friction = 0.5f;
+    box = tw_add(&t, &bd);
+    bd.position.y = -19.5f;
+    resting = tw_add(&t, &bd);
+    tw_steps(&t, 60);
+    s = tw_state(&t, box);
+    f = tw_state(&t, floor_);
+    ck_assert_close(s.velocity.x, 2.0, 2e-3);
+    ck_assert_close(s.position.x, 1.6, 0.02);
+    ck_assert_close(s.position.y, 0.5, 2e-3);
+    ck_assert_close(f.position.x, 2.0, 1e-4);
+    ck_assert_close(f.position.y, -0.5, 1e-6);
+    /* twice the sleep time later: carried, awake; resting, asleep */
+    tw_steps(&t, (int)(2.0f * CAROM_DEFAULT_SLEEP_TIME * 60.0f) + 60);
+    ck_assert_int_eq(carom_body_is_awake(t.w, box), 1);
+    ck_assert_int_eq(carom_body_is_awake(t.w, resting), 0);
+    s = tw_state(&t, box);
+    ck_assert_close(s.velocity.x, 2.0, 2e-3);
+    (void)still_floor;
+    tw_free(&t);
+}
+END_TEST
+
+/* An elevator: a kinematic platform rising at 0.5 m/s (made after the box
+ * it carries) lifts a box resting on it; after 2 s the box has risen 1 m
+ * with it, moves at its speed, and is awake, as is a box on a platform
+ * that only turns about its centre at 0.2 rad/s under the box. */
+START_TEST(test_rising_or_turning_kinematic_platform_carries_a_box_awake)
+{
+    int turning;
+    for (turning = 0; turning < 2; ++turning) {
+        tw t = world_with(CAROM_METHOD_EVENTS, -10.0f, 2);
+        carom_body_def bd = carom_default_body_def();
+        carom_body_state s;
+        int box;
+        carom_body_def_set_box(&bd, 0.5f, 0.5f);
+        bd.position.y = 0.5f;
+        bd.friction = 1.0f;
+        box = tw_add(&t, &bd);
+        carom_body_def_set_box(&bd, 4.0f, 0.5f);
+        bd.type = CAROM_BODY_KINEMATIC;
+        bd.position.y = -0.5f;
+        if (turning)
+            bd.angular_velocity = 0.2f;
+        else
+            bd.velocity.y = 0.5f;
+        tw_add(&t, &bd);
+        tw_steps(&t, 120);
+        s = tw_state(&t, box);
+        ck_assert_int_eq(carom_body_is_awake(t.w, box), 1);
+        if (!turning) {
+            ck_assert_close(s.position.y, 1.5, 5e-3);
+            ck_assert_close(s.velocity.y, 0.5, 5e-3);
+        } else {
+            /* the platform has turned 0.4 rad; the box turns with it */
+            ck_assert_close(carom_rot_angle(s.rotation), 0.4, 0.05);
+        }
+        tw_free(&t);
+    }
+}
+END_TEST
+
+/* A kinematic body at rest is a floor like a static one: a box that lands
+ * on it comes to rest and stays asleep (only a kinematic body given a
+ * velocity wakes what it touches). */
+START_TEST(test_box_on_a_still_kinematic_floor_stays_asleep)
+{
+    int type;
+    for (type = CAROM_BODY_STATIC; type <= CAROM_BODY_KINEMATIC; ++type) {
+        carom_world_def wd = carom_default_world_def();
+        carom_body_def bd = carom_default_body_def();
+        int box, i, first = -1, woken = 0, prev = 1;
+        tw t;
+        wd.max_bodies = 2;
+        t = tw_make(&wd);
+        carom_body_def_set_box(&bd, 5.0f, 0.5f);
+        bd.type = (carom_body_type)type;
+        bd.position.y = -0.5f;
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        carom_body_def_set_box(&bd, 0.5f, 0.5f);
+        bd.position.y = 1.0f; /* falls 0.5 m, then rests */
+        box = tw_add(&t, &bd);
+        for (i = 0; i < 300; ++i) {
+            int awake;
+            tw_steps(&t, 1);
+            awake = carom_body_is_awake(t.w, box);
+            if (!awake && first < 0)
+                first = i;
+            woken += awake && !prev;
+            prev = awake;
+        }
+        ck_assert_msg(first >= 0, "type %d: the box never sleeps", type);
+        ck_assert_msg(woken == 0, "type %d: the resting box was woken %d times", type, woken);
+        ck_assert_close(tw_state(&t, box).position.y, 0.5, 5e-3);
+        tw_free(&t);
+    }
+}
+END_TEST
+
+Suite *suite_kinematic(void)
+{
+    Suite *s = suite_create("kinematic");
+    TCase *tc = tcase_create("kinematic");
+    tcase_add_test(tc, test_kinematic_body_keeps_its_velocity_through_gravity_and_hits);
+    tcase_add_test(tc, test_kinematic_paddle_reflects_a_ball_at_one_plus_e_times_its_speed);
+    tcase_add_test(tc, test_box_on_a_moving_kinematic_floor_is_dragged_to_its_speed_and_stays_awake);
+    tcase_add_test(tc, test_rising_or_turning_kinematic_platform_carries_a_box_awake);
+    tcase_add_test(tc, test_box_on_a_still_kinematic_floor_stays_asleep);
+    suite_add_tcase(s, tc);
+    return s;
+}
