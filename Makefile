@@ -244,6 +244,7 @@ help:
 	@echo "  make bench-build     $(BUILD)/carom-bench and $(BUILD)/carom-bench-ops only"
 	@echo "  make stress          every stress scene through carom and Box2D: docs/stability.md (~2 min)"
 	@echo "  make accuracy        error against run time, every method and Box2D over dt 1/15..1/3840: docs/accuracy.md and figures (a few minutes)"
+	@echo "  make bench-box2d     the pyramid and pour scenes timed against Box2D 2.4.1, one run at a time: events within 2x, discrete no slower (~1 min)"
 	@echo "  make stress-scenes   regenerate tools/scenes/stress (python3)"
 	@echo "  make render-images   redraw docs/images/ with carom render (default scene animated; stills; needs gnuplot)"
 	@echo "  make embedded-insn   instructions per run on the emulated M4F against carom profile --weights cortex-m4f"

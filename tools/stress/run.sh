@@ -2,9 +2,9 @@
 # run.sh -- the stress suite: every scene of tools/scenes/stress through
 # every engine, each result checked against the scene's own criterion.
 #
-#   sh tools/stress/run.sh [--fast] [--report FILE] [--jobs N] [--v3 PATH]
-#       [--carom PATH] [--box2d PATH] [--checker PATH] [--scenes DIR]
-#       [--timeout SEC] [--keep DIR]
+#   sh tools/stress/run.sh [--fast] [--only LIST] [--targets]
+#       [--report FILE] [--jobs N] [--v3 PATH] [--carom PATH] [--box2d PATH]
+#       [--checker PATH] [--scenes DIR] [--timeout SEC] [--keep DIR]
 #
 # Engines: build/carom with --method events and with --method discrete;
 # build/carom-box2d (Box2D 2.4.1, run with --quiet; skipped with a note if
@@ -26,6 +26,11 @@
 # the time per step to stdout; progress goes to stderr when it is a
 # terminal.
 #   --fast         only the scenes marked '# fast' (about 20 s)
+#   --only LIST    only these scenes (comma-separated names, without .scene)
+#   --targets      after the time table, carom's time per step over Box2D
+#                  2.4.1's for each scene, against the speed targets:
+#                  events within 2x Box2D 2.4.1, discrete no slower (make
+#                  bench-box2d); reported, never fatal
 #   --report FILE  also write FILE (docs/stability.md) and, next to it, one
 #                  gnuplot figure per scene family (FILE's name without .md,
 #                  then -FAMILY.png: docs/stability-stack.png, ...)
@@ -45,6 +50,8 @@ v3=
 checker=build/stress_check
 dir=tools/scenes/stress
 fast=0
+only=
+targets=0
 report=
 jobs=1
 timeout=900
@@ -63,6 +70,8 @@ need_arg() {
 while [ $# -gt 0 ]; do
     case "$1" in
     --fast) fast=1; shift ;;
+    --only) need_arg $# "$1"; only=$2; shift 2 ;;
+    --targets) targets=1; shift ;;
     --report) need_arg $# "$1"; report=$2; shift 2 ;;
     --jobs) need_arg $# "$1"; jobs=$2; shift 2 ;;
     --v3) need_arg $# "$1"; v3=$2; shift 2 ;;
@@ -142,9 +151,17 @@ for f in "$dir"/*.scene; do
     if [ $fast = 1 ] && ! grep -q '^fast 1$' "$tmp/info/$n"; then
         continue
     fi
+    if [ -n "$only" ]; then
+        case ",$only," in *",$n,"*) ;; *) continue ;; esac
+    fi
     echo "$n" >> "$tmp/scenes"
 done
 [ -s "$tmp/scenes" ] || die "no scenes in '$dir'$([ $fast = 1 ] && echo ' marked # fast')"
+if [ -n "$only" ]; then
+    for n in $(echo "$only" | tr ',' ' '); do
+        grep -qx "$n" "$tmp/scenes" || die "--only: no scene '$n' in '$dir'$([ $fast = 1 ] && echo ' marked # fast')"
+    done
+fi
 
 info() { # NAME KEY
     awk -v k="$2" '$1 == k { print $2; exit }' "$tmp/info/$1"
@@ -396,6 +413,28 @@ summary=$(awk -v engines="$engines" -v labels="$labels" '
     }' "$tmp/table")
 nscenes=$(awk 'END { print NR }' "$tmp/order")
 printf '\n%d scenes, %d runs, %d s: %s\n' "$nscenes" "$ntasks" "$elapsed" "$summary"
+
+# Speed targets against Box2D 2.4.1 (reported, never fatal).
+if [ $targets = 1 ]; then
+    case " $engines " in
+    *" box2d "*)
+        printf '\nspeed targets: time per step over Box2D 2.4.1 (events <= 2, discrete <= 1)\n'
+        awk -F '\t' '
+            function ratio(c, b) { return (c == "" || b == "" || b + 0 <= 0) ? "" : c / b }
+            function verdict(r, lim) { return r == "" ? "n/a" : (r <= lim ? "met" : "MISSED") }
+            BEGIN { printf "%-28s %14s %14s\n", "scene", "events/2.4.1", "discrete/2.4.1" }
+            { re = ratio($4, $10); rd = ratio($7, $10)
+              printf "%-28s %8s %-5s %8s %-5s\n", $1,
+                     (re == "" ? "-" : sprintf("%.2f", re)), verdict(re, 2),
+                     (rd == "" ? "-" : sprintf("%.2f", rd)), verdict(rd, 1)
+              if (re != "") { ne++; if (re <= 2) me++ }
+              if (rd != "") { nd++; if (rd <= 1) md++ } }
+            END { printf "events within 2x Box2D 2.4.1: %d of %d scenes; discrete no slower: %d of %d\n",
+                         me, ne, md, nd }' "$tmp/table"
+        ;;
+    *) echo "run.sh: --targets: Box2D 2.4.1 did not run; no speed targets" >&2 ;;
+    esac
+fi
 carom_bad=$(awk -F '\t' '($2 != "PASS" && $2 != "NA") || ($5 != "PASS" && $5 != "NA") { n++ } END { print n + 0 }' "$tmp/table")
 
 # ---- report ------------------------------------------------------------------------------
@@ -570,6 +609,26 @@ EOF
             { printf "| %s |", $1
               for (i = 1; i <= n; i++) printf " %s |", ($(3 * i + 1) == "" ? "-" : $(3 * i + 1))
               printf "\n" }' "$tmp/table"
+        case " $engines " in
+        *" box2d "*)
+            cat <<'TXT'
+
+Speed targets on the pyramid and pour scenes: carom events within 2x
+Box2D 2.4.1's time per step, carom discrete no slower (`make bench-box2d`
+times them one run at a time).
+
+TXT
+            awk -F '\t' -v d="$tmp/info" '
+                function ratio(c, b) { return (c == "" || b == "" || b + 0 <= 0) ? "" : c / b }
+                function cell(r, lim) { return r == "" ? "-" : sprintf("%.2f (%s)", r, r <= lim ? "met" : "**missed**") }
+                BEGIN { print "| scene | events / Box2D 2.4.1 | discrete / Box2D 2.4.1 |"; print "| --- | ---: | ---: |" }
+                { fam = ""; file = d "/" $1
+                  while ((getline line < file) > 0) if (line ~ /^family /) fam = substr(line, 8)
+                  close(file)
+                  if (fam != "pyramid" && fam != "pour" && $1 !~ /^(pyramid|pour)-/) next
+                  printf "| %s | %s | %s |\n", $1, cell(ratio($4, $10), 2), cell(ratio($7, $10), 1) }' "$tmp/table"
+            ;;
+        esac
         printf '\n## Figures\n'
         if [ -z "$figs" ]; then
             printf '\n(No figures: gnuplot was not available or failed.)\n'

@@ -25,7 +25,11 @@ STRESS_BOX2D := $(if $(shell pkg-config --exists box2d 2>/dev/null && echo yes),
 STRESS_ARGS = --carom $(CLI) --box2d $(BOX2D_BIN) --checker $(STRESS_CHECK) \
     --jobs $(STRESS_JOBS) $(if $(STRESS_V3),--v3 $(STRESS_V3))
 
-.PHONY: stress stress-check stress-scenes
+# The pile, pyramid and pour scenes, timed side by side with Box2D 2.4.1
+# (one run at a time) against the speed targets.
+BENCH_BOX2D_SCENES ?= pyramid-b20,pyramid-b40,pour-500,pyramid-b20-s0.01,pyramid-b20-s100,pour-500-s100
+
+.PHONY: stress stress-check stress-scenes bench-box2d
 
 # Reads scenes with tools/scene.c only (scene_load); no library internals.
 $(STRESS_CHECK): tools/stress/stress_check.c tools/scene.h $(wildcard include/*.h) $(TOOL_OBJ) $(LIB) | $(BUILD)/tools
@@ -38,6 +42,10 @@ stress: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D)
 stress-check: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D)
 	sh tools/stress/selftest.sh $(STRESS_CHECK)
 	sh tools/stress/run.sh $(STRESS_ARGS) --fast
+
+bench-box2d: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D)
+	@test -n "$(STRESS_BOX2D)" || { echo "bench-box2d: Box2D 2.4.1 not found (apt-get install libbox2d-dev)" >&2; exit 1; }
+	sh tools/stress/run.sh $(STRESS_ARGS) --jobs 1 --only $(BENCH_BOX2D_SCENES) --targets
 
 stress-scenes:
 	python3 tools/stress/gen_scenes.py
