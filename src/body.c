@@ -13,6 +13,16 @@
 
 static int cr_vec_finite(cr_v2 v) { return cr_finite(v.x) && cr_finite(v.y); }
 
+int cr_body_moves(const cr_body *b)
+{
+    if (!(b->flags & CR_BODY_ALIVE) || !(b->flags & CR_BODY_AWAKE))
+        return 0;
+    if (b->type == CAROM_BODY_DYNAMIC)
+        return 1;
+    return b->type == CAROM_BODY_KINEMATIC &&
+           (!cr_eq(b->v.x, 0.0f) || !cr_eq(b->v.y, 0.0f) || !cr_eq(b->w, 0.0f));
+}
+
 int cr_v2_within(cr_v2 x, float limit)
 {
     return cr_le(cr_abs(x.x), limit) && cr_le(cr_abs(x.y), limit);

@@ -99,4 +99,10 @@ int cr_accel_in_range(const cr_body_info *info, cr_v2 force, float torque);
 /* |x| <= limit for both components, x finite. */
 int cr_v2_within(cr_v2 x, float limit);
 
+/* Can the body move this step: an awake dynamic body, or a kinematic body
+ * given a velocity? Static bodies, sleeping bodies and kinematic bodies at
+ * rest stand still: two such bodies never pair, and a sleeping body
+ * touching only such bodies stays asleep. */
+int cr_body_moves(const cr_body *b);
+
 #endif /* CAROM_BODY_H */

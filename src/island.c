@@ -54,21 +54,10 @@ static int cr_asleep(const cr_body *b)
     return b->type == CAROM_BODY_DYNAMIC && !(b->flags & CR_BODY_AWAKE);
 }
 
-/* A kinematic body given a velocity (one at rest is a floor like a
- * static body). */
-static int cr_kinematic_moving(const cr_body *b)
-{
-    return b->type == CAROM_BODY_KINEMATIC &&
-           (!cr_eq(b->v.x, 0.0f) || !cr_eq(b->v.y, 0.0f) || !cr_eq(b->w, 0.0f));
-}
-
-/* Able to move into a sleeping body this step: an awake dynamic body, or
- * a moving kinematic one. */
+/* Able to move into a sleeping body this step. */
 static int cr_awake_mover(const cr_body *b)
 {
-    if (b->type == CAROM_BODY_KINEMATIC)
-        return cr_kinematic_moving(b);
-    return b->type == CAROM_BODY_DYNAMIC && (b->flags & CR_BODY_AWAKE);
+    return cr_body_moves(b);
 }
 
 /*
@@ -139,9 +128,9 @@ void cr_island_sleep(carom_world *w, float dt)
         if (!(c->flags & CR_CONTACT_TOUCHING))
             continue;
         /* a body carried by a moving kinematic body never sleeps */
-        if (cr_kinematic_moving(A))
+        if (A->type == CAROM_BODY_KINEMATIC && cr_body_moves(A))
             w->bodies[c->b].still_time = 0.0f;
-        if (cr_kinematic_moving(B))
+        if (B->type == CAROM_BODY_KINEMATIC && cr_body_moves(B))
             w->bodies[c->a].still_time = 0.0f;
         if (A->type != CAROM_BODY_DYNAMIC || B->type != CAROM_BODY_DYNAMIC)
             continue;

@@ -7,7 +7,8 @@
  * pair. At the end of a successful step the pairs touching now are
  * collected (unsorted: the events methods add pairs during the step),
  * together with the old touches of bodies that could not move this step
- * (asleep or static: nothing looked at them, nothing changed); sorted,
+ * (asleep, static, or kinematic at rest: nothing looked at them, nothing
+ * changed); sorted,
  * and merged against the old list: a pair only in the new list began
  * touching, one only in the old list ended. A sensor's touches are its
  * overlaps at the end of the step.
@@ -65,8 +66,7 @@ static void cr_touch_event(carom_world *w, const cr_touch *t, int begin)
 
 static int cr_still(const cr_body *b)
 {
-    return (b->flags & CR_BODY_ALIVE) &&
-           (b->type == CAROM_BODY_STATIC || !(b->flags & CR_BODY_AWAKE));
+    return (b->flags & CR_BODY_ALIVE) && !cr_body_moves(b);
 }
 
 /* Does pair k touch at the end of this step? */

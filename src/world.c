@@ -447,9 +447,7 @@ void cr_scale_compute(const carom_world *w, cr_scale *s)
 int cr_may_collide(const carom_world *w, int a, int b)
 {
     const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
-    int ma = A->type != CAROM_BODY_STATIC && (A->flags & CR_BODY_AWAKE);
-    int mb = B->type != CAROM_BODY_STATIC && (B->flags & CR_BODY_AWAKE);
-    if (!ma && !mb)
+    if (!cr_body_moves(A) && !cr_body_moves(B))
         return 0;
 #if CAROM_ENABLE_SENSORS
     /* two sensors never report each other; a sensor sees any body */
@@ -470,8 +468,8 @@ int cr_may_collide(const carom_world *w, int a, int b)
     return 1;
 }
 
-/* Bodies pair unless neither can move (static, or asleep), or their
- * filter says no. */
+/* Bodies pair unless neither can move (static, asleep, or kinematic at
+ * rest), or their filter says no. */
 static int cr_accept_pair(void *ctx, int a, int b)
 {
     return cr_may_collide((const carom_world *)ctx, a, b);

@@ -228,6 +228,60 @@ START_TEST(test_box_on_a_still_kinematic_floor_stays_asleep)
 }
 END_TEST
 
+/* A box asleep on the floor, a kinematic body at rest overlapping its top
+ * corner, a ball falling past: a sleeping body is never pushed, so every
+ * body asleep after a step has zero velocity (the kinematic body at rest
+ * is a wall like a static one, not something to solve the sleeper
+ * against). Found by the API fuzzer. */
+START_TEST(test_sleeping_box_under_a_still_kinematic_body_is_never_pushed)
+{
+    int method;
+    for (method = 0; method < CAROM_METHOD_COUNT; ++method) {
+        tw t = world_with((carom_method)method, -10.0f, 4);
+        carom_body_def bd = carom_default_body_def();
+        int i, s, slept = 0;
+        carom_body_def_set_box(&bd, 8.0f, 0.5f);
+        bd.type = CAROM_BODY_STATIC;
+        bd.position.y = -0.5f;
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        bd.position.y = 3.0f;
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        carom_body_def_set_box(&bd, 0.5f, 0.5f);
+        bd.position.y = 0.5f;
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        bd.type = CAROM_BODY_KINEMATIC;
+        bd.shape = CAROM_SHAPE_POLYGON;
+        bd.vertex_count = 4;
+        bd.vertices[0].x = 1.0f;
+        bd.vertices[1].y = 1.0f;
+        bd.vertices[2].x = -1.0f;
+        bd.vertices[3].y = -1.0f;
+        bd.position.x = -1.0f;
+        bd.position.y = 1.0f;
+        tw_add(&t, &bd);
+        for (s = 0; s < 60; ++s) {
+            tw_steps(&t, 1);
+            for (i = 1; i <= 2; ++i) {
+                carom_body_state st = tw_state(&t, i);
+                if (carom_body_is_awake(t.w, i))
+                    continue;
+                slept = 1;
+                ck_assert_msg(st.velocity.x == 0.0f && st.velocity.y == 0.0f &&
+                                  st.angular_velocity == 0.0f,
+                              "method %d, step %d: body %d asleep with v (%g, %g) w %g", method,
+                              s + 1, i, (double)st.velocity.x, (double)st.velocity.y,
+                              (double)st.angular_velocity);
+            }
+        }
+        ck_assert_msg(slept, "method %d: nothing fell asleep", method);
+        tw_free(&t);
+    }
+}
+END_TEST
+
 Suite *suite_kinematic(void)
 {
     Suite *s = suite_create("kinematic");
@@ -237,6 +291,7 @@ Suite *suite_kinematic(void)
     tcase_add_test(tc, test_box_on_a_moving_kinematic_floor_is_dragged_to_its_speed_and_stays_awake);
     tcase_add_test(tc, test_rising_or_turning_kinematic_platform_carries_a_box_awake);
     tcase_add_test(tc, test_box_on_a_still_kinematic_floor_stays_asleep);
+    tcase_add_test(tc, test_sleeping_box_under_a_still_kinematic_body_is_never_pushed);
     suite_add_tcase(s, tc);
     return s;
 }
