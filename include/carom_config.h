@@ -352,6 +352,15 @@
                                                 earlier once converged */
 #endif
 
+#ifndef CAROM_IMPACT_DIRECT_MAX
+#define CAROM_IMPACT_DIRECT_MAX 12 /**< an impact solve whose sweeps converge
+                                        slowly solves its acting rows
+                                        exactly when they are at most this
+                                        many impulses (its matrix takes
+                                        4 N^2 bytes of stack: 576 at 12);
+                                        0: sweeps only */
+#endif
+
 #ifndef CAROM_POLYGON_ANGLE_TOL
 #define CAROM_POLYGON_ANGLE_TOL 1.0e-4f /**< smallest turn (sine of the angle)
                                              at a polygon vertex: flatter

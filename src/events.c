@@ -57,6 +57,12 @@
 /* Sweeps that keep an island's touching contacts from closing in for the
  * rest of the substep (cr_hold_contacts). */
 #define CR_HOLD_SWEEPS 8
+/* An island solve still moving after this many sweeps (and every 16
+ * more) tries the exact solve of its acting rows (cr_rows_direct); a
+ * pivot below this fraction of the largest diagonal entry means
+ * redundant rows, left to the sweeps. */
+#define CR_DIRECT_AFTER 8
+#define CR_DIRECT_MIN_PIVOT 1.0e-3f
 
 /* Approach below this fraction of the bodies' speeds is rounding. */
 #define CR_APPROACH_REL_TOL 1.0e-4f
@@ -521,6 +527,246 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
     return change;
 }
 
+/*
+ * The exact solve of a small island. Projected Gauss-Seidel converges
+ * slowly where rows are strongly coupled through rotation (a box landing
+ * on a short column: each friction row turns the boxes, which moves the
+ * normal rows of the next box), a few per cent per sweep. Its iterate
+ * shows which rows act (normal impulse positive, friction below its
+ * limit); with those rows as equalities the island is a linear system,
+ * K x = b, small enough to eliminate directly. Its solution is taken if
+ * it is feasible (no pulling normal, no friction past its cone), and the
+ * sweeps go on from there: they confirm it, or they correct a wrong
+ * guess of the active rows. It is tried only when the sweeps are slow,
+ * and only for islands of at most CAROM_IMPACT_DIRECT_MAX unknowns.
+ */
+#if CAROM_IMPACT_DIRECT_MAX > 0
+/* An unknown: an impulse of a row, along a direction with its levers. */
+typedef struct cr_unknown {
+    short row;
+    short kind; /* 0, 1: normal of point k; 2: friction of a 2-point row at
+                 * its midpoint; 3, 4: friction of point kind - 3 */
+} cr_unknown;
+
+static void cr_unknown_dir(const cr_impact_row *r, int kind, cr_v2 *d,
+                           float *la, float *lb)
+{
+    if (kind < 2) {
+        *d = r->n;
+        *la = r->la[kind];
+        *lb = r->lb[kind];
+    } else {
+        cr_v2 t = cr_vright(r->n), ra, rb;
+        if (kind == 2) {
+            ra = cr_vscale(0.5f, cr_vadd(r->ra[0], r->ra[1]));
+            rb = cr_vscale(0.5f, cr_vadd(r->rb[0], r->rb[1]));
+        } else {
+            ra = r->ra[kind - 3];
+            rb = r->rb[kind - 3];
+        }
+        *d = t;
+        *la = cr_vcross(ra, t);
+        *lb = cr_vcross(rb, t);
+    }
+}
+
+/* The velocity change along unknown u per unit impulse of unknown v,
+ * through the bodies they share (body a of a row takes -P, body b +P). */
+static float cr_coupling(const carom_world *w, const cr_impact_row *ru,
+                         cr_v2 du, float lau, float lbu,
+                         const cr_impact_row *rv, cr_v2 dv, float lav,
+                         float lbv)
+{
+    float k = 0.0f, dot = cr_vdot(du, dv);
+    int bu[2], bv[2], i, j;
+    float lu[2], lv[2];
+    bu[0] = ru->a; bu[1] = ru->b; lu[0] = lau; lu[1] = lbu;
+    bv[0] = rv->a; bv[1] = rv->b; lv[0] = lav; lv[1] = lbv;
+    for (i = 0; i < 2; ++i)
+        for (j = 0; j < 2; ++j) {
+            const cr_body *c = &w->bodies[bu[i]];
+            float term;
+            if (bu[i] != bv[j] || c->type != CAROM_BODY_DYNAMIC)
+                continue;
+            term = cr_mul(c->inv_m, dot);
+#if CAROM_ENABLE_ROTATION
+            term = cr_add(term, cr_mul(c->inv_I, cr_mul(lu[i], lv[j])));
+#else
+            (void)lu;
+            (void)lv;
+#endif
+            k = i == j ? cr_add(k, term) : cr_sub(k, term); /* signs -1, +1 */
+        }
+    return k;
+}
+
+/* Velocity along unknown u now. */
+static float cr_unknown_vel(const carom_world *w, const cr_impact_row *r,
+                            cr_v2 d, float la, float lb)
+{
+    const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
+    cr_v2 dv = cr_vsub(B->v, A->v);
+    float v = cr_vdot(dv, d);
+#if CAROM_ENABLE_ROTATION
+    v = cr_add(v, cr_sub(cr_mul(B->w, lb), cr_mul(A->w, la)));
+#else
+    (void)la;
+    (void)lb;
+#endif
+    return v;
+}
+
+/* Returns 1 if the island was set to the exact solution of its active
+ * rows. */
+static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
+{
+    enum { M = CAROM_IMPACT_DIRECT_MAX };
+    cr_unknown u[M];
+    float K[M][M], x[M];
+    int m = 0, i, j, c;
+    for (i = 0; i < n; ++i) {
+        const cr_impact_row *r = &rows[i];
+        int k;
+        for (k = 0; k < r->count; ++k)
+            if (cr_gt(r->pn[k], 0.0f)) {
+                if (m == M)
+                    return 0;
+                u[m].row = (short)i;
+                u[m++].kind = (short)k;
+            }
+#if CAROM_ENABLE_FRICTION
+        if (cr_gt(r->friction, 0.0f)) {
+            if (r->count == 2) {
+                float limit = cr_mul(r->friction, cr_add(r->pn[0], r->pn[1]));
+                if (cr_lt(cr_abs(cr_add(r->pt[0], r->pt[1])), limit)) {
+                    if (m == M)
+                        return 0;
+                    u[m].row = (short)i;
+                    u[m++].kind = 2;
+                }
+            } else {
+                for (k = 0; k < r->count; ++k)
+                    if (cr_lt(cr_abs(r->pt[k]), cr_mul(r->friction, r->pn[k]))) {
+                        if (m == M)
+                            return 0;
+                        u[m].row = (short)i;
+                        u[m++].kind = (short)(3 + k);
+                    }
+            }
+        }
+#endif
+    }
+    if (m < 2)
+        return 0;
+    /* K and the right-hand side: the velocity each unknown still lacks */
+    for (i = 0; i < m; ++i) {
+        const cr_impact_row *ri = &rows[u[i].row];
+        cr_v2 di;
+        float lai, lbi, target;
+        cr_unknown_dir(ri, u[i].kind, &di, &lai, &lbi);
+        target = u[i].kind < 2 ? ri->target[u[i].kind] : 0.0f;
+        x[i] = cr_sub(target, cr_unknown_vel(w, ri, di, lai, lbi));
+        for (j = 0; j <= i; ++j) {
+            const cr_impact_row *rj = &rows[u[j].row];
+            cr_v2 dj;
+            float laj, lbj;
+            cr_unknown_dir(rj, u[j].kind, &dj, &laj, &lbj);
+            K[i][j] = K[j][i] = cr_coupling(w, ri, di, lai, lbi, rj, dj, laj, lbj);
+        }
+    }
+    /* Gaussian elimination with partial pivoting; a (nearly) singular
+     * system (redundant rows) is left to the sweeps */
+    for (c = 0; c < m; ++c) {
+        int p = c;
+        float big = cr_abs(K[c][c]), scale = cr_abs(K[c][c]);
+        for (i = c + 1; i < m; ++i) {
+            if (cr_gt(cr_abs(K[i][c]), big)) {
+                big = cr_abs(K[i][c]);
+                p = i;
+            }
+        }
+        for (i = 0; i < m; ++i)
+            scale = cr_max(scale, cr_abs(K[i][i]));
+        if (!cr_gt(big, cr_mul(CR_DIRECT_MIN_PIVOT, scale)))
+            return 0;
+        if (p != c) {
+            for (j = 0; j < m; ++j) {
+                float tmp = K[c][j];
+                K[c][j] = K[p][j];
+                K[p][j] = tmp;
+            }
+            {
+                float tmp = x[c];
+                x[c] = x[p];
+                x[p] = tmp;
+            }
+        }
+        for (i = c + 1; i < m; ++i) {
+            float f = cr_div(K[i][c], K[c][c]);
+            for (j = c + 1; j < m; ++j)
+                K[i][j] = cr_sub(K[i][j], cr_mul(f, K[c][j]));
+            x[i] = cr_sub(x[i], cr_mul(f, x[c]));
+        }
+    }
+    for (i = m - 1; i >= 0; --i) {
+        float s = x[i];
+        for (j = i + 1; j < m; ++j)
+            s = cr_sub(s, cr_mul(K[i][j], x[j]));
+        x[i] = cr_div(s, K[i][i]);
+    }
+    /* feasible? normal impulses stay pushing, friction within its cone */
+    for (i = 0; i < m; ++i) {
+        const cr_impact_row *r = &rows[u[i].row];
+        if (u[i].kind < 2) {
+            if (cr_lt(cr_add(r->pn[u[i].kind], x[i]), 0.0f))
+                return 0;
+        }
+    }
+    for (i = 0; i < m; ++i) {
+        const cr_impact_row *r = &rows[u[i].row];
+        float pn0 = r->pn[0], pn1 = r->count == 2 ? r->pn[1] : 0.0f, pt;
+        if (u[i].kind < 2)
+            continue;
+        for (j = 0; j < m; ++j) {
+            if (u[j].row != u[i].row || u[j].kind >= 2)
+                continue;
+            if (u[j].kind == 0)
+                pn0 = cr_add(pn0, x[j]);
+            else
+                pn1 = cr_add(pn1, x[j]);
+        }
+        if (u[i].kind == 2)
+            pt = cr_add(cr_add(r->pt[0], r->pt[1]), x[i]);
+        else
+            pt = cr_add(r->pt[u[i].kind - 3], x[i]);
+        if (cr_gt(cr_abs(pt), cr_mul(r->friction, u[i].kind == 2 ? cr_add(pn0, pn1) : pn0)))
+            return 0;
+    }
+    /* apply it */
+    for (i = 0; i < m; ++i) {
+        cr_impact_row *r = &rows[u[i].row];
+        cr_v2 d;
+        float la, lb;
+        cr_unknown_dir(r, u[i].kind, &d, &la, &lb);
+        cr_row_apply(w, r, 0, d, la, lb, x[i]);
+        if (u[i].kind < 2)
+            r->pn[u[i].kind] = cr_add(r->pn[u[i].kind], x[i]);
+        else if (u[i].kind >= 3)
+            r->pt[u[i].kind - 3] = cr_add(r->pt[u[i].kind - 3], x[i]);
+    }
+    for (i = 0; i < m; ++i) {
+        cr_impact_row *r = &rows[u[i].row];
+        if (u[i].kind == 2) {
+            float pt = cr_add(cr_add(r->pt[0], r->pt[1]), x[i]);
+            float pn = cr_add(r->pn[0], r->pn[1]);
+            r->pt[0] = cr_mul(cr_gt(pn, 0.0f) ? cr_div(r->pn[0], pn) : 0.5f, pt);
+            r->pt[1] = cr_sub(pt, r->pt[0]);
+        }
+    }
+    return 1;
+}
+#endif
+
 /* Sweeps over rows[0..n) until the impulses settle. */
 #ifdef CR_DEBUG_STATS
 #include <stdio.h>
@@ -566,6 +812,12 @@ static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n, int max_sw
         /* a single frictionless point is exact after one sweep */
         if (n == 1 && rows[0].count == 1 && !cr_gt(rows[0].friction, 0.0f))
             break;
+#if CAROM_IMPACT_DIRECT_MAX > 0
+        /* slow: solve the rows that act exactly; the sweeps that follow
+         * confirm it (or correct the guess) */
+        if ((it & 15) == CR_DIRECT_AFTER - 1 && it + 1 < max_sweeps)
+            (void)cr_rows_direct(w, rows, n);
+#endif
     }
 }
 
