@@ -55,7 +55,7 @@ include mk/install.mk
 include tools/embedded/embedded.mk
 # make lean SCENE=FILE, make lean-check: the smallest build for a scene.
 include mk/lean.mk
-# make fuzz, fuzz-regress, fuzz-build, fuzz-clean: libFuzzer (tests/fuzz/).
+# make fuzz, fuzz-check, fuzz-regress, fuzz-build, fuzz-clean: libFuzzer (tests/fuzz/).
 include tests/fuzz/fuzz.mk
 # make docs-check: every path, file and make target the docs name exists.
 include mk/docs.mk
@@ -177,7 +177,7 @@ check: deps
 	@$(MAKE) --no-print-directory accuracy-check
 	@$(MAKE) --no-print-directory check-embedded
 	@$(MAKE) --no-print-directory lean-check
-	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=30
+	@$(MAKE) --no-print-directory fuzz-check
 	@$(MAKE) --no-print-directory install-test
 	@$(MAKE) --no-print-directory check-cxx
 	@$(MAKE) --no-print-directory coverage-check
@@ -211,7 +211,7 @@ help:
 	@echo "  make fuzz-build      the libFuzzer harnesses only, in $(BUILD)/fuzz/"
 	@echo ""
 	@echo "test"
-	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, readme-test, header-example-check, examples-check, validate-check, cli-test, stress-check, accuracy-check, check-embedded, lean-check, fuzz (30 s a harness when clang is here), install-test, check-cxx, coverage-check, sanitize, memcheck, help-check, docs-check"
+	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, readme-test, header-example-check, examples-check, validate-check, cli-test, stress-check, accuracy-check, check-embedded, lean-check, fuzz-check (reproducible, ~30 s a harness when clang is here), install-test, check-cxx, coverage-check, sanitize, memcheck, help-check, docs-check"
 	@echo "  make unit            the Check unit tests, plain and profiling builds"
 	@echo "  make cli-test        $(CLI)'s command-line tests (tests/cli_test.sh)"
 	@echo "  make readme-test     the README's example program compiles and runs"
@@ -226,6 +226,7 @@ help:
 	@echo "  make stress-check    the stress checker's self-test, then the fast stress scenes (a few seconds)"
 	@echo "  make accuracy-check  the fast accuracy subset (bounce and projectile at three dt) with tolerances (seconds)"
 	@echo "  make fuzz            build the libFuzzer harnesses, fuzz each FUZZ_SECONDS (30), replay; needs clang"
+	@echo "  make fuzz-check      reproducible fuzzing (seed FUZZ_SEED=1, a fixed number of inputs a harness, ~30 s each), then the replay; needs clang"
 	@echo "  make fuzz-regress    replay the fuzz seed corpus and tests/fuzz/crashers/ (seconds)"
 	@echo "  make install-test    install into a temporary DESTDIR, build and run a program with pkg-config, uninstall"
 	@echo "  make check-cxx       include/carom.h compiles as C++98 and C++17 (-Wall -Wextra -Werror -pedantic)"

@@ -4,7 +4,11 @@
 #                               each for N s (default 30) on a work copy of
 #                               its seed corpus, then replay the seeds and
 #                               tests/fuzz/crashers/; fails on any finding
-#   make fuzz-regress           only the replay (seconds; for make check)
+#   make fuzz-check             reproducible fuzzing (make check): seed
+#                               FUZZ_SEED (1), a fixed number of inputs per
+#                               harness (fuzz.sh check_runs, ~30 s each) at
+#                               most FUZZ_SECONDS (60) each; then the replay
+#   make fuzz-regress           only the replay (seconds)
 #   make fuzz-build             only build the harnesses
 #   make fuzz-clean             remove $(BUILD)/fuzz/
 #
@@ -41,12 +45,19 @@ FUZZ_SKIP = echo "$@: skipped: '$(FUZZ_CC)' cannot build a libFuzzer program \
 (-fsanitize=fuzzer,address,undefined); install clang and libclang-rt-dev \
 (Debian: apt-get install clang libclang-rt-dev)"; test -z "$(FUZZ_REQUIRE)"
 
-.PHONY: fuzz fuzz-regress fuzz-build fuzz-clean
+.PHONY: fuzz fuzz-check fuzz-regress fuzz-build fuzz-clean
 
 fuzz:
 	@if $(FUZZ_SH) probe '$(FUZZ_CC)' '$(FUZZ_OUT)'; then \
 	    $(FUZZ_SUBMAKE) fuzz-build && \
 	    $(FUZZ_SH) run '$(FUZZ_OUT)' '$(FUZZ_SECONDS)'; \
+	else $(FUZZ_SKIP); fi
+
+FUZZ_SEED ?= 1
+fuzz-check:
+	@if $(FUZZ_SH) probe '$(FUZZ_CC)' '$(FUZZ_OUT)'; then \
+	    $(FUZZ_SUBMAKE) fuzz-build && \
+	    $(FUZZ_SH) run '$(FUZZ_OUT)' '$(if $(filter command line,$(origin FUZZ_SECONDS)),$(FUZZ_SECONDS),60)' '$(FUZZ_SEED)'; \
 	else $(FUZZ_SKIP); fi
 
 fuzz-regress:

@@ -4,16 +4,21 @@
 #
 #   sh tests/fuzz/fuzz.sh probe CC OUT
 #       exit 0 if CC builds a libFuzzer + ASan + UBSan program (in OUT)
-#   sh tests/fuzz/fuzz.sh run OUT SECONDS
+#   sh tests/fuzz/fuzz.sh run OUT SECONDS [SEED]
 #       fuzz every harness OUT/fuzz_* for SECONDS seconds, one process each,
 #       on a work copy of its seed corpus (OUT/corpus/HARNESS; the checked-in
-#       tests/fuzz/corpus/ is never written), then replay
+#       tests/fuzz/corpus/ is never written), then replay. With SEED, the
+#       run is reproducible: libFuzzer's -seed=SEED, and at most the
+#       harness's check_runs inputs (below) from its seed corpus alone, so
+#       every machine tries the same inputs (a slow one stops at SECONDS
+#       with a prefix of them): what make check runs
 #   sh tests/fuzz/fuzz.sh replay OUT
 #       run every harness once over its seed corpus, then every file of
 #       tests/fuzz/crashers/ (HARNESS-description) through its harness;
 #       fail if any input crashes or breaks an invariant
 #
-# Harness settings (max_len, dictionary, timeout) are below, in one place.
+# Harness settings (max_len, dictionary, timeout, runs) are below, in one
+# place.
 
 set -u
 
@@ -41,6 +46,16 @@ probe() {
         -o "$out/probe" >/dev/null 2>&1
 }
 
+# check_runs HARNESS: inputs of a reproducible run (about 30 s each here)
+check_runs() {
+    case $1 in
+    fuzz_scene_parse) echo 400000 ;;
+    fuzz_scene_run) echo 8000 ;;
+    fuzz_api) echo 30000 ;;
+    *) echo 10000 ;;
+    esac
+}
+
 replay() {
     out=$1
     bad=0
@@ -51,7 +66,7 @@ replay() {
         fi
         seeds=$fuzz_dir/corpus/$h
         [ -d "$seeds" ] || continue
-        n=$(ls "$seeds" | wc -l)
+        n=$(find "$seeds" -type f | wc -l)
         # shellcheck disable=SC2046
         if "$out/$h" $(flags "$h") -runs=0 "$seeds" >"$out/$h.replay.log" 2>&1; then
             echo "ok - $h: $n seed inputs"
@@ -91,19 +106,29 @@ replay() {
 }
 
 run() {
-    out=$1 seconds=$2
+    out=$1 seconds=$2 seed=${3:-}
     failed=""
     for h in $harnesses; do
         work=$out/corpus/$h
         art=$out/artifacts/$h
+        extra=""
+        if [ -n "$seed" ]; then
+            # the checked-in seeds only, whatever earlier runs added
+            rm -rf "$work"
+            extra="-seed=$seed -runs=$(check_runs "$h")"
+        fi
         mkdir -p "$work" "$art" || return 2
         for f in "$fuzz_dir/corpus/$h"/*; do
             [ -f "$f" ] || continue
             [ -e "$work/$(basename "$f")" ] || cp "$f" "$work/"
         done
-        echo "fuzz: $h for $seconds s (corpus $work, log $out/$h.log)"
-        # shellcheck disable=SC2046
-        "$out/$h" $(flags "$h") -max_total_time="$seconds" \
+        if [ -n "$seed" ]; then
+            echo "fuzz: $h, seed $seed, at most $(check_runs "$h") inputs or $seconds s (corpus $work, log $out/$h.log)"
+        else
+            echo "fuzz: $h for $seconds s (corpus $work, log $out/$h.log)"
+        fi
+        # shellcheck disable=SC2046,SC2086
+        "$out/$h" $(flags "$h") $extra -max_total_time="$seconds" \
             -print_final_stats=1 -artifact_prefix="$art/" "$work" \
             >"$out/$h.log" 2>&1
         rc=$?
@@ -130,10 +155,10 @@ run() {
 
 case ${1:-} in
 probe) probe "${2:-clang}" "${3:-build/fuzz}" ;;
-run) run "${2:-build/fuzz}" "${3:-30}" ;;
+run) run "${2:-build/fuzz}" "${3:-30}" "${4:-}" ;;
 replay) replay "${2:-build/fuzz}" ;;
 *)
-    echo "usage: sh $0 probe CC OUT | run OUT SECONDS | replay OUT" >&2
+    echo "usage: sh $0 probe CC OUT | run OUT SECONDS [SEED] | replay OUT" >&2
     exit 2
     ;;
 esac
