@@ -353,11 +353,12 @@
 #endif
 
 #ifndef CAROM_IMPACT_DIRECT_MAX
-#define CAROM_IMPACT_DIRECT_MAX 12 /**< an impact solve whose sweeps converge
+#define CAROM_IMPACT_DIRECT_MAX 24 /**< an impact solve whose sweeps converge
                                         slowly solves its acting rows
                                         exactly when they are at most this
-                                        many impulses (its matrix takes
-                                        4 N^2 bytes of stack: 576 at 12);
+                                        many impulses; the world buffer
+                                        holds its N x N matrix (2.4 KB at
+                                        24, less in worlds of few pairs);
                                         0: sweeps only */
 #endif
 

@@ -541,13 +541,6 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
  * and only for islands of at most CAROM_IMPACT_DIRECT_MAX unknowns.
  */
 #if CAROM_IMPACT_DIRECT_MAX > 0
-/* An unknown: an impulse of a row, along a direction with its levers. */
-typedef struct cr_unknown {
-    short row;
-    short kind; /* 0, 1: normal of point k; 2: friction of a 2-point row at
-                 * its midpoint; 3, 4: friction of point kind - 3 */
-} cr_unknown;
-
 static void cr_unknown_dir(const cr_impact_row *r, int kind, cr_v2 *d,
                            float *la, float *lb)
 {
@@ -620,10 +613,13 @@ static float cr_unknown_vel(const carom_world *w, const cr_impact_row *r,
  * rows. */
 static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
 {
-    enum { M = CAROM_IMPACT_DIRECT_MAX };
-    cr_unknown u[M];
-    float K[M][M], x[M];
+    const int M = w->direct_cap;
+    float *x = w->direct_x;
+    int *u = w->direct_u;
     int m = 0, i, j, c;
+#define K(i, j) w->direct_k[(i) * M + (j)]
+#define U_ROW(i) (u[i] >> 3)
+#define U_KIND(i) (u[i] & 7)
     for (i = 0; i < n; ++i) {
         const cr_impact_row *r = &rows[i];
         int k;
@@ -631,8 +627,7 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
             if (cr_gt(r->pn[k], 0.0f)) {
                 if (m == M)
                     return 0;
-                u[m].row = (short)i;
-                u[m++].kind = (short)k;
+                u[m++] = i * 8 + k;
             }
 #if CAROM_ENABLE_FRICTION
         if (cr_gt(r->friction, 0.0f)) {
@@ -641,16 +636,14 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
                 if (cr_lt(cr_abs(cr_add(r->pt[0], r->pt[1])), limit)) {
                     if (m == M)
                         return 0;
-                    u[m].row = (short)i;
-                    u[m++].kind = 2;
+                    u[m++] = i * 8 + 2;
                 }
             } else {
                 for (k = 0; k < r->count; ++k)
                     if (cr_lt(cr_abs(r->pt[k]), cr_mul(r->friction, r->pn[k]))) {
                         if (m == M)
                             return 0;
-                        u[m].row = (short)i;
-                        u[m++].kind = (short)(3 + k);
+                        u[m++] = i * 8 + 3 + k;
                     }
             }
         }
@@ -660,40 +653,40 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
         return 0;
     /* K and the right-hand side: the velocity each unknown still lacks */
     for (i = 0; i < m; ++i) {
-        const cr_impact_row *ri = &rows[u[i].row];
+        const cr_impact_row *ri = &rows[U_ROW(i)];
         cr_v2 di;
         float lai, lbi, target;
-        cr_unknown_dir(ri, u[i].kind, &di, &lai, &lbi);
-        target = u[i].kind < 2 ? ri->target[u[i].kind] : 0.0f;
+        cr_unknown_dir(ri, U_KIND(i), &di, &lai, &lbi);
+        target = U_KIND(i) < 2 ? ri->target[U_KIND(i)] : 0.0f;
         x[i] = cr_sub(target, cr_unknown_vel(w, ri, di, lai, lbi));
         for (j = 0; j <= i; ++j) {
-            const cr_impact_row *rj = &rows[u[j].row];
+            const cr_impact_row *rj = &rows[U_ROW(j)];
             cr_v2 dj;
             float laj, lbj;
-            cr_unknown_dir(rj, u[j].kind, &dj, &laj, &lbj);
-            K[i][j] = K[j][i] = cr_coupling(w, ri, di, lai, lbi, rj, dj, laj, lbj);
+            cr_unknown_dir(rj, U_KIND(j), &dj, &laj, &lbj);
+            K(i, j) = K(j, i) = cr_coupling(w, ri, di, lai, lbi, rj, dj, laj, lbj);
         }
     }
     /* Gaussian elimination with partial pivoting; a (nearly) singular
      * system (redundant rows) is left to the sweeps */
     for (c = 0; c < m; ++c) {
         int p = c;
-        float big = cr_abs(K[c][c]), scale = cr_abs(K[c][c]);
+        float big = cr_abs(K(c, c)), scale = cr_abs(K(c, c));
         for (i = c + 1; i < m; ++i) {
-            if (cr_gt(cr_abs(K[i][c]), big)) {
-                big = cr_abs(K[i][c]);
+            if (cr_gt(cr_abs(K(i, c)), big)) {
+                big = cr_abs(K(i, c));
                 p = i;
             }
         }
         for (i = 0; i < m; ++i)
-            scale = cr_max(scale, cr_abs(K[i][i]));
+            scale = cr_max(scale, cr_abs(K(i, i)));
         if (!cr_gt(big, cr_mul(CR_DIRECT_MIN_PIVOT, scale)))
             return 0;
         if (p != c) {
             for (j = 0; j < m; ++j) {
-                float tmp = K[c][j];
-                K[c][j] = K[p][j];
-                K[p][j] = tmp;
+                float tmp = K(c, j);
+                K(c, j) = K(p, j);
+                K(p, j) = tmp;
             }
             {
                 float tmp = x[c];
@@ -702,67 +695,70 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
             }
         }
         for (i = c + 1; i < m; ++i) {
-            float f = cr_div(K[i][c], K[c][c]);
+            float f = cr_div(K(i, c), K(c, c));
             for (j = c + 1; j < m; ++j)
-                K[i][j] = cr_sub(K[i][j], cr_mul(f, K[c][j]));
+                K(i, j) = cr_sub(K(i, j), cr_mul(f, K(c, j)));
             x[i] = cr_sub(x[i], cr_mul(f, x[c]));
         }
     }
     for (i = m - 1; i >= 0; --i) {
         float s = x[i];
         for (j = i + 1; j < m; ++j)
-            s = cr_sub(s, cr_mul(K[i][j], x[j]));
-        x[i] = cr_div(s, K[i][i]);
+            s = cr_sub(s, cr_mul(K(i, j), x[j]));
+        x[i] = cr_div(s, K(i, i));
     }
     /* feasible? normal impulses stay pushing, friction within its cone */
     for (i = 0; i < m; ++i) {
-        const cr_impact_row *r = &rows[u[i].row];
-        if (u[i].kind < 2) {
-            if (cr_lt(cr_add(r->pn[u[i].kind], x[i]), 0.0f))
+        const cr_impact_row *r = &rows[U_ROW(i)];
+        if (U_KIND(i) < 2) {
+            if (cr_lt(cr_add(r->pn[U_KIND(i)], x[i]), 0.0f))
                 return 0;
         }
     }
     for (i = 0; i < m; ++i) {
-        const cr_impact_row *r = &rows[u[i].row];
+        const cr_impact_row *r = &rows[U_ROW(i)];
         float pn0 = r->pn[0], pn1 = r->count == 2 ? r->pn[1] : 0.0f, pt;
-        if (u[i].kind < 2)
+        if (U_KIND(i) < 2)
             continue;
         for (j = 0; j < m; ++j) {
-            if (u[j].row != u[i].row || u[j].kind >= 2)
+            if (U_ROW(j) != U_ROW(i) || U_KIND(j) >= 2)
                 continue;
-            if (u[j].kind == 0)
+            if (U_KIND(j) == 0)
                 pn0 = cr_add(pn0, x[j]);
             else
                 pn1 = cr_add(pn1, x[j]);
         }
-        if (u[i].kind == 2)
+        if (U_KIND(i) == 2)
             pt = cr_add(cr_add(r->pt[0], r->pt[1]), x[i]);
         else
-            pt = cr_add(r->pt[u[i].kind - 3], x[i]);
-        if (cr_gt(cr_abs(pt), cr_mul(r->friction, u[i].kind == 2 ? cr_add(pn0, pn1) : pn0)))
+            pt = cr_add(r->pt[U_KIND(i) - 3], x[i]);
+        if (cr_gt(cr_abs(pt), cr_mul(r->friction, U_KIND(i) == 2 ? cr_add(pn0, pn1) : pn0)))
             return 0;
     }
     /* apply it */
     for (i = 0; i < m; ++i) {
-        cr_impact_row *r = &rows[u[i].row];
+        cr_impact_row *r = &rows[U_ROW(i)];
         cr_v2 d;
         float la, lb;
-        cr_unknown_dir(r, u[i].kind, &d, &la, &lb);
+        cr_unknown_dir(r, U_KIND(i), &d, &la, &lb);
         cr_row_apply(w, r, 0, d, la, lb, x[i]);
-        if (u[i].kind < 2)
-            r->pn[u[i].kind] = cr_add(r->pn[u[i].kind], x[i]);
-        else if (u[i].kind >= 3)
-            r->pt[u[i].kind - 3] = cr_add(r->pt[u[i].kind - 3], x[i]);
+        if (U_KIND(i) < 2)
+            r->pn[U_KIND(i)] = cr_add(r->pn[U_KIND(i)], x[i]);
+        else if (U_KIND(i) >= 3)
+            r->pt[U_KIND(i) - 3] = cr_add(r->pt[U_KIND(i) - 3], x[i]);
     }
     for (i = 0; i < m; ++i) {
-        cr_impact_row *r = &rows[u[i].row];
-        if (u[i].kind == 2) {
+        cr_impact_row *r = &rows[U_ROW(i)];
+        if (U_KIND(i) == 2) {
             float pt = cr_add(cr_add(r->pt[0], r->pt[1]), x[i]);
             float pn = cr_add(r->pn[0], r->pn[1]);
             r->pt[0] = cr_mul(cr_gt(pn, 0.0f) ? cr_div(r->pn[0], pn) : 0.5f, pt);
             r->pt[1] = cr_sub(pt, r->pt[0]);
         }
     }
+#undef K
+#undef U_ROW
+#undef U_KIND
     return 1;
 }
 #endif

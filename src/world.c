@@ -115,7 +115,7 @@ carom_status carom_world_def_validate(const carom_world_def *d)
 
 typedef struct cr_caps {
     int bodies, pairs, contacts, events, impacts, heap, island, rows, buckets;
-    int touches, touch_events;
+    int touches, touch_events, direct;
 } cr_caps;
 
 static void cr_caps_of(const carom_world_def *d, cr_caps *c)
@@ -140,6 +140,11 @@ static void cr_caps_of(const carom_world_def *d, cr_caps *c)
     c->rows = CR_ROWS_PER_ISLAND_BODY * c->island < c->pairs
                   ? CR_ROWS_PER_ISLAND_BODY * c->island
                   : c->pairs;
+    /* an impact row has at most three unknowns (two normals, friction) */
+    c->direct = 3 * c->rows < CAROM_IMPACT_DIRECT_MAX ? 3 * c->rows : CAROM_IMPACT_DIRECT_MAX;
+#if !CAROM_ENABLE_EVENTS
+    c->direct = 0;
+#endif
     c->buckets = cr_broadphase_bucket_cap(b);
 #if CAROM_ENABLE_TOUCH_EVENTS || CAROM_ENABLE_SENSORS
     /* a touching pair is a candidate pair */
@@ -159,7 +164,7 @@ typedef struct cr_layout {
     size_t world, bodies, backup, info, boxes, awake, sbody, drift, mark, island,
         island_v, island_w, regrown, pair_head, proxies, ptmp, start, count,
         pairs, pair_tmp, contacts, solve_order, support, warm, warm_next, heap, rows,
-        events, touch, touch_next, touch_events, active, total;
+        direct_k, direct_x, direct_u, events, touch, touch_next, touch_events, active, total;
 } cr_layout;
 
 static size_t cr_round_up(size_t n) { return (n + CR_ALIGN - 1u) & ~(size_t)(CR_ALIGN - 1u); }
@@ -213,6 +218,9 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     CR_PLACE(warm_next, c->contacts, cr_warm);
     CR_PLACE(heap, c->heap, cr_heap_entry);
     CR_PLACE(rows, c->rows, cr_impact_row);
+    CR_PLACE(direct_k, (long)c->direct * c->direct, float);
+    CR_PLACE(direct_x, c->direct, float);
+    CR_PLACE(direct_u, c->direct, int);
     CR_PLACE(events, c->events, carom_event);
     CR_PLACE(touch, c->touches, cr_touch);
     CR_PLACE(touch_next, c->touches, cr_touch);
@@ -316,6 +324,10 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->regrown_count = 0;
     w->rows = CR_AT(rows, cr_impact_row);
     w->row_cap = c.rows;
+    w->direct_k = CR_AT(direct_k, float);
+    w->direct_x = CR_AT(direct_x, float);
+    w->direct_u = CR_AT(direct_u, int);
+    w->direct_cap = c.direct;
     w->impacts_this_step = 0;
     w->budget_hit = 0;
     w->events = CR_AT(events, carom_event);

@@ -131,6 +131,9 @@ struct carom_world {
     int regrown_count;
     cr_impact_row *rows;      /* contacts of an impact island */
     int row_cap;
+    float *direct_k, *direct_x; /* the exact solve of a small island: its */
+    int *direct_u;              /* matrix, right-hand side and unknowns */
+    int direct_cap;             /* (row * 8 + kind), at most this many */
     int impacts_this_step;
     int budget_hit;
     int reorder;              /* impacts handed contacts to the solver */
