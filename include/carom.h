@@ -574,6 +574,8 @@ typedef struct carom_stats {
     int max_pairs_used;  /**< most candidate pairs in one step */
     int max_contacts_used; /**< most contacts in one step */
     int max_impacts_used;  /**< most impacts in one step */
+    int max_direct_used;   /**< most impulses of an exact island solve
+                                (CAROM_IMPACT_DIRECT_MAX; 0: none tried) */
     int awake_bodies;    /**< bodies simulated in the last step */
     int contacts;        /**< contacts in the last step */
 } carom_stats;

@@ -651,6 +651,8 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
     }
     if (m < 2)
         return 0;
+    if (m > w->stats.max_direct_used)
+        w->stats.max_direct_used = m;
     /* K and the right-hand side: the velocity each unknown still lacks */
     for (i = 0; i < m; ++i) {
         const cr_impact_row *ri = &rows[U_ROW(i)];

@@ -356,7 +356,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
         w->drift[i].alpha = 0.0f;
     }
     {
-        carom_stats z = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        carom_stats z = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
         w->stats = z;
     }
     *out = w;

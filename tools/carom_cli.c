@@ -1986,6 +1986,13 @@ static int cmd_lean(int argc, char **argv)
                    "the scene's polygons have up to %d vertices */\n",
                    CAROM_MAX_POLYGON_VERTICES, n.max_vertices);
     }
+#if CAROM_IMPACT_DIRECT_MAX > 0
+    printf("#define CAROM_IMPACT_DIRECT_MAX %d /* limit: the exact solve of an impact island "
+           "took at most %d impulses%s */\n", n.stats.max_direct_used, n.stats.max_direct_used,
+           n.stats.max_direct_used > 0 ? "" : " (never tried: left out)");
+#else
+    printf("#define CAROM_IMPACT_DIRECT_MAX 0 /* limit: as this carom was built */\n");
+#endif
     printf("#ifndef CAROM_ENABLE_PROFILE\n"
            "#define CAROM_ENABLE_PROFILE 0 /* off: counting operations is for "
            "measurement builds (make lean's CLI turns it on) */\n#endif\n");
