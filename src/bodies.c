@@ -32,10 +32,10 @@ carom_status carom_world_add_body(carom_world *w, const carom_body_def *def,
     if (slot >= w->def.max_bodies)
         return CAROM_ERR_WORLD_FULL;
     /* a reused slot keeps counting its generation */
-    info.generation = slot < w->slot_count ? w->info[slot].generation : 0u;
+    info.generation = w->info[slot].generation;
     {
         /* the force callback sees the id the body will have */
-        unsigned saved = slot < w->slot_count ? w->info[slot].generation : 0u;
+        unsigned saved = w->info[slot].generation;
         cr_body_info keep;
         int grow = slot == w->slot_count;
         if (!grow)

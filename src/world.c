@@ -354,6 +354,11 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
         w->drift[i].t = 0.0f;
         w->drift[i].a = cr_v(0.0f, 0.0f);
         w->drift[i].alpha = 0.0f;
+        /* every slot counts its generation from 0, whether or not it is
+         * in use: an id removed from the last slot stays stale when the
+         * slot is taken again */
+        w->info[i].generation = 0u;
+        w->bodies[i].flags = 0u;
     }
     {
         carom_stats z = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
@@ -375,7 +380,9 @@ int cr_body_id(const carom_world *w, int slot)
 carom_status cr_slot_of(const carom_world *w, int id, int *slot)
 {
     unsigned u = (unsigned)id, s = u & CR_INDEX_MASK;
-    if (id < 0 || (int)s >= w->slot_count)
+    /* slots past slot_count were never used, or were freed from the end
+     * (their generation says which) */
+    if (id < 0 || (int)s >= w->def.max_bodies)
         return CAROM_ERR_BAD_BODY_ID;
     if (!(w->bodies[s].flags & CR_BODY_ALIVE) || cr_body_id(w, (int)s) != id)
         return (w->bodies[s].flags & CR_BODY_ALIVE) || w->info[s].generation > 0

@@ -674,6 +674,32 @@ START_TEST(test_new_calls_refuse_null_and_bad_ids)
 }
 END_TEST
 
+/* Removing the body in the last slot in use, then adding one: the new body
+ * takes the slot with a new generation, and the old id stays stale (found
+ * by the API fuzzer: the freed end slot restarted its generation). */
+START_TEST(test_id_of_the_last_slot_stays_stale_after_reuse)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_body_state st;
+    int a = -1, b = -1;
+    tw t;
+    wd.max_bodies = 4;
+    t = tw_make(&wd);
+    ck_assert_int_eq(carom_world_add_body(t.w, &bd, &a), CAROM_OK);
+    ck_assert_int_eq(carom_world_remove_body(t.w, a), CAROM_OK);
+    ck_assert_int_eq(carom_body_get_state(t.w, a, &st), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_body_get_state(t.w, 3, &st), CAROM_ERR_BAD_BODY_ID);
+    bd.position.y = 7.0f;
+    ck_assert_int_eq(carom_world_add_body(t.w, &bd, &b), CAROM_OK);
+    ck_assert_int_ne(a, b);
+    ck_assert_int_eq(carom_body_get_state(t.w, a, &st), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_body_get_state(t.w, b, &st), CAROM_OK);
+    ck_assert_close(st.position.y, 7.0, 1e-7);
+    tw_free(&t);
+}
+END_TEST
+
 Suite *suite_api(void)
 {
     Suite *s = suite_create("api");
@@ -691,6 +717,7 @@ Suite *suite_api(void)
     tcase_add_test(tb, test_new_calls_refuse_null_and_bad_ids);
     tcase_add_test(tk, test_kinematic_paddle_pushes_and_is_not_pushed);
     tcase_add_test(tk, test_kinematic_platform_lifts_a_box);
+    tcase_add_test(tr, test_id_of_the_last_slot_stays_stale_after_reuse);
     tcase_add_test(tr, test_removal_frees_the_slot_and_refuses_stale_ids);
     tcase_add_test(tr, test_removing_a_support_wakes_and_drops_what_it_held);
     tcase_add_test(tr, test_removal_mid_simulation_leaves_nothing_dangling);
