@@ -309,7 +309,9 @@ typedef enum carom_status {
                                        CAROM_LIMIT_MAX_MASS] */
     CAROM_ERR_BAD_RESTITUTION,    /**< restitution outside [0, 1] */
     CAROM_ERR_BAD_FRICTION,       /**< friction < 0 */
-    CAROM_ERR_BAD_ROTATION,       /**< rotation pair (0, 0) */
+    CAROM_ERR_BAD_ROTATION,       /**< rotation pair (0, 0), or too short
+                                       or long to normalize (c^2 + s^2
+                                       below FLT_MIN or not finite) */
     CAROM_ERR_TOO_FEW_VERTICES,   /**< polygon with < 3 vertices */
     CAROM_ERR_TOO_MANY_VERTICES,  /**< > CAROM_MAX_POLYGON_VERTICES */
     CAROM_ERR_DEGENERATE_POLYGON, /**< repeated or collinear vertices, (near)

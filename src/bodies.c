@@ -233,7 +233,7 @@ carom_status carom_body_set_transform(carom_world *w, int id, carom_vec2 positio
         !cr_finite(rotation.s))
         return CAROM_ERR_NOT_FINITE;
     len = cr_add(cr_mul(rotation.c, rotation.c), cr_mul(rotation.s, rotation.s));
-    if (!cr_gt(len, 0.0f))
+    if (cr_lt(len, CR_ROT_MIN_LEN2) || !cr_finite(len))
         return CAROM_ERR_BAD_ROTATION;
     q = cr_rot_normalize(rotation);
 #if !CAROM_ENABLE_ROTATION

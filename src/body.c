@@ -330,7 +330,7 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
         return CAROM_ERR_BAD_DENSITY;
     qlen = cr_add(cr_mul(def->rotation.c, def->rotation.c),
                   cr_mul(def->rotation.s, def->rotation.s));
-    if (!cr_gt(qlen, 0.0f) || !cr_finite(qlen))
+    if (cr_lt(qlen, CR_ROT_MIN_LEN2) || !cr_finite(qlen))
         return CAROM_ERR_BAD_ROTATION;
     if (!cr_v2_within(def->position, CAROM_LIMIT_MAX_LENGTH))
         return CAROM_ERR_OUT_OF_RANGE;

@@ -96,6 +96,12 @@ cr_v2 cr_body_origin(const cr_body *b, const cr_body_info *info);
  * a = F / m or alpha times extent is beyond CAROM_LIMIT_MAX_ACCEL. */
 int cr_accel_in_range(const cr_body_info *info, cr_v2 force, float torque);
 
+/* The smallest c^2 + s^2 of a rotation pair that normalizes to a unit
+ * pair (FLT_MIN: below it the square is denormal and the square root too
+ * coarse); shorter pairs, and pairs whose square overflows, are refused
+ * with CAROM_ERR_BAD_ROTATION. */
+#define CR_ROT_MIN_LEN2 1.17549435e-38f
+
 /* |x| <= limit for both components, x finite. */
 int cr_v2_within(cr_v2 x, float limit);
 

@@ -700,6 +700,36 @@ START_TEST(test_id_of_the_last_slot_stays_stale_after_reuse)
 }
 END_TEST
 
+/* A rotation pair is normalized when its squared length is a normal
+ * float, and refused otherwise (found by the API fuzzer: a pair of length
+ * 1e-22 came back with c^2 + s^2 = 1.06). */
+START_TEST(test_rotation_pairs_too_short_to_normalize_are_refused)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_body_state st;
+    carom_vec2 p = {0.0f, 0.0f};
+    carom_rot tiny, small;
+    int id = -1;
+    tw t;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    tiny.c = 7.28888e-37f;
+    tiny.s = 1.09136e-22f;
+    small.c = 3.0e-19f; /* c^2 + s^2 = 2.5e-37, a normal float */
+    small.s = 4.0e-19f;
+    bd.rotation = tiny;
+    ck_assert_int_eq(carom_world_add_body(t.w, &bd, &id), CAROM_ERR_BAD_ROTATION);
+    bd.rotation = small;
+    ck_assert_int_eq(carom_world_add_body(t.w, &bd, &id), CAROM_OK);
+    ck_assert_int_eq(carom_body_get_state(t.w, id, &st), CAROM_OK);
+    ck_assert_close(st.rotation.c, 0.6, 1e-6);
+    ck_assert_close(st.rotation.s, 0.8, 1e-6);
+    ck_assert_int_eq(carom_body_set_transform(t.w, id, p, tiny), CAROM_ERR_BAD_ROTATION);
+    tw_free(&t);
+}
+END_TEST
+
 Suite *suite_api(void)
 {
     Suite *s = suite_create("api");
@@ -717,6 +747,7 @@ Suite *suite_api(void)
     tcase_add_test(tb, test_new_calls_refuse_null_and_bad_ids);
     tcase_add_test(tk, test_kinematic_paddle_pushes_and_is_not_pushed);
     tcase_add_test(tk, test_kinematic_platform_lifts_a_box);
+    tcase_add_test(tr, test_rotation_pairs_too_short_to_normalize_are_refused);
     tcase_add_test(tr, test_id_of_the_last_slot_stays_stale_after_reuse);
     tcase_add_test(tr, test_removal_frees_the_slot_and_refuses_stale_ids);
     tcase_add_test(tr, test_removing_a_support_wakes_and_drops_what_it_held);
