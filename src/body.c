@@ -19,8 +19,12 @@ int cr_body_moves(const cr_body *b)
         return 0;
     if (b->type == CAROM_BODY_DYNAMIC)
         return 1;
+#if CAROM_ENABLE_KINEMATIC
     return b->type == CAROM_BODY_KINEMATIC &&
            (!cr_eq(b->v.x, 0.0f) || !cr_eq(b->v.y, 0.0f) || !cr_eq(b->w, 0.0f));
+#else
+    return 0; /* static */
+#endif
 }
 
 int cr_v2_within(cr_v2 x, float limit)

@@ -128,10 +128,12 @@ void cr_island_sleep(carom_world *w, float dt)
         if (!(c->flags & CR_CONTACT_TOUCHING))
             continue;
         /* a body carried by a moving kinematic body never sleeps */
+#if CAROM_ENABLE_KINEMATIC
         if (A->type == CAROM_BODY_KINEMATIC && cr_body_moves(A))
             w->bodies[c->b].still_time = 0.0f;
         if (B->type == CAROM_BODY_KINEMATIC && cr_body_moves(B))
             w->bodies[c->a].still_time = 0.0f;
+#endif
         if (A->type != CAROM_BODY_DYNAMIC || B->type != CAROM_BODY_DYNAMIC)
             continue;
         ra = cr_find(parent, c->a);
