@@ -40,9 +40,6 @@
 #include "narrowphase.h"
 #include "solver.h"
 #include "toi.h"
-#ifdef CR_DEBUG_PAIR
-#include <stdio.h>
-#endif
 
 #if CAROM_ENABLE_EVENTS
 
@@ -766,28 +763,10 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
 #endif
 
 /* Sweeps over rows[0..n) until the impulses settle. */
-#ifdef CR_DEBUG_STATS
-#include <stdio.h>
-#include <stdlib.h>
-static long cr_dbg_solves, cr_dbg_iters, cr_dbg_rows, cr_dbg_max_rows, cr_dbg_capped;
-static void cr_dbg_print(void)
-{
-    fprintf(stderr, "island solves %ld, mean iterations %.1f, mean rows %.1f, max rows %ld, capped %ld\n",
-            cr_dbg_solves, cr_dbg_solves ? (double)cr_dbg_iters / cr_dbg_solves : 0.0,
-            cr_dbg_solves ? (double)cr_dbg_rows / cr_dbg_solves : 0.0, cr_dbg_max_rows, cr_dbg_capped);
-}
-#endif
 
 static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n, int max_sweeps)
 {
     int it, i, k;
-#ifdef CR_DEBUG_STATS
-    if (cr_dbg_solves++ == 0)
-        atexit(cr_dbg_print);
-    cr_dbg_rows += n;
-    if (n > cr_dbg_max_rows)
-        cr_dbg_max_rows = n;
-#endif
     float tol = 0.0f;
     for (i = 0; i < n; ++i) {
         const cr_impact_row *r = &rows[i];
@@ -800,11 +779,6 @@ static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n, int max_sw
         float change = 0.0f;
         for (i = 0; i < n; ++i)
             change = cr_max(change, cr_row_sweep(w, &rows[i]));
-#ifdef CR_DEBUG_STATS
-        ++cr_dbg_iters;
-        if (it == CAROM_IMPACT_ISLAND_ITERATIONS - 1)
-            ++cr_dbg_capped;
-#endif
         if (!cr_gt(change, tol))
             break;
         /* a single frictionless point is exact after one sweep */
@@ -1102,27 +1076,6 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         w->pairs[r->pair].met |= CR_PAIR_MET | CR_PAIR_HIT;
     }
     ++w->stats.impact_solves;
-#ifdef CR_DEBUG_PAIR
-    {
-        extern int cr_dbg_a, cr_dbg_b;
-        int q, hit = 0;
-        for (q = 0; q < nb; ++q)
-            hit |= w->island[q] == cr_dbg_a || w->island[q] == cr_dbg_b;
-        if (hit) {
-            fprintf(stderr, "    impact t=%.5f bodies %d rows %d:", (double)t, nb, nr);
-            for (q = 0; q < nr; ++q)
-                fprintf(stderr, " (%d,%d %s app %.3f pn %.4g)", w->rows[q].a, w->rows[q].b, w->rows[q].impact ? "imp" : "rest",
-                        (double)w->rows[q].approach, (double)w->rows[q].pn[0]);
-            {
-                const cr_body *A = &w->bodies[cr_dbg_a], *B = &w->bodies[cr_dbg_b];
-                cr_v2 xa, xb; cr_rot qa, qb;
-                cr_pose_at(A, &w->drift[cr_dbg_a], t, &xa, &qa);
-                cr_pose_at(B, &w->drift[cr_dbg_b], t, &xb, &qb);
-                fprintf(stderr, " | pair dist at t %.4f\n", (double)cr_vlen(cr_vsub(xb, xa)));
-            }
-        }
-    }
-#endif
     CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
     if (!any) {
         /* nothing changed course: the seeds were not impacts after all;

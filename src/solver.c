@@ -52,10 +52,6 @@
  * word: a light box under a heavy one is not pushed into the floor.
  */
 #include "solver.h"
-#ifdef CR_DEBUG_PAIR
-#include <stdio.h>
-int cr_dbg_a = -1, cr_dbg_b = -1;
-#endif
 
 void cr_substep_init(cr_substep *s, const carom_world *w, float h)
 {
@@ -159,17 +155,6 @@ int cr_solver_classify(carom_world *w, int events)
          * settling pile would turn into a storm of micro-collisions */
         if (events && !(c->flags & CR_CONTACT_RESTING))
             take = !cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b));
-#ifdef CR_DEBUG_PAIR
-        {
-            extern int cr_dbg_a, cr_dbg_b;
-            if (c->a == cr_dbg_a && c->b == cr_dbg_b) {
-                const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
-                cr_v2 d = cr_vsub(B->x, A->x);
-                fprintf(stderr, "  classify: take %d approach %.4f rest %.4f dist %.4f drift.t a %.5f b %.5f active %d %d\n", take,
-                        (double)cr_contact_approach(w, c), (double)cr_rest_speed(w, c->a, c->b), (double)cr_vlen(d), (double)w->drift[c->a].t, (double)w->drift[c->b].t, sa->active, sb->active);
-            }
-        }
-#endif
         if (take) {
             c->flags |= CR_CONTACT_SOLVE;
             if (cr_moves(A))
