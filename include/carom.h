@@ -532,7 +532,9 @@ carom_status carom_world_query_point(const carom_world *w, carom_vec2 p,
                                      carom_query_fn fn, void *ctx);
 
 /** The first shape the segment from `from` to `to` enters (a ray starting
- * inside a shape does not hit it). *found: 1 if hit, else 0. */
+ * inside a shape does not hit it). *found: 1 if hit, else 0. Both ends
+ * within CAROM_LIMIT_MAX_LENGTH of the origin in x and y, else
+ * CAROM_ERR_OUT_OF_RANGE (CAROM_ERR_NOT_FINITE if not finite). */
 carom_status carom_world_raycast(const carom_world *w, carom_vec2 from,
                                  carom_vec2 to, carom_ray_hit *hit,
                                  int *found);

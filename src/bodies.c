@@ -88,8 +88,9 @@ static void cr_wake_neighbours(carom_world *w, int s)
     }
 }
 
-/* Forget the warm starts (and touches) of body slot s: its contacts are
- * found anew. */
+/* Forget the warm starts of body slot s: its contacts are found anew.
+ * Its touches stay: the next step's merge ends those that no longer hold
+ * (only a removal drops them silently), so a touch never begins twice. */
 static void cr_forget_body(carom_world *w, int s)
 {
     int i, n = 0;
@@ -97,7 +98,6 @@ static void cr_forget_body(carom_world *w, int s)
         if (w->warm[i].a != s && w->warm[i].b != s)
             w->warm[n++] = w->warm[i];
     w->warm_count = n;
-    cr_touch_forget(w, s);
     w->grid_valid = 0;
 }
 
@@ -115,6 +115,7 @@ carom_status carom_world_remove_body(carom_world *w, int id)
         cr_island_wake(w, s);
     cr_wake_neighbours(w, s);
     cr_forget_body(w, s);
+    cr_touch_forget(w, s);
     w->bodies[s].flags = 0u;
     w->info[s].generation = (w->info[s].generation + 1u) &
                             ((1u << (31 - CAROM_ID_INDEX_BITS)) - 1u);
@@ -497,6 +498,7 @@ carom_status carom_body_set_filter(carom_world *w, int id, uint32_t category, ui
     else
         w->bodies[s].flags &= (unsigned short)~CR_BODY_FILTERED;
     cr_island_wake(w, s);
+    cr_wake_neighbours(w, s); /* a pair it may no longer collide with */
     cr_forget_body(w, s);
     return CAROM_OK;
 #endif

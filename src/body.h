@@ -19,6 +19,9 @@
                                only (carom_body_apply_force/torque) */
 #define CR_BODY_CIRCLE 32u  /* its shape is a circle (read in the solver's
                                hot loops without touching the cold info) */
+#define CR_BODY_ESCAPED 64u /* ended the last step outside its grid box
+                               (pushed by an impulse past its swept box):
+                               queries and sensors test its pose directly */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

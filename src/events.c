@@ -368,6 +368,11 @@ static int cr_regrow_visit(void *ctx, int other)
     cr_pair *p;
     if (other == c->body || cr_has_pair(w, a, b) || !cr_may_collide(w, a, b))
         return 1;
+    /* A sleeping body is not simulated this step: an impulse now would
+     * leave it asleep and moving. The next step's pairs wake its island
+     * and its contacts settle what this step's motion overlapped. */
+    if (w->bodies[other].type == CAROM_BODY_DYNAMIC && !(w->bodies[other].flags & CR_BODY_AWAKE))
+        return 1;
     if (w->pair_count >= w->def.max_pairs) {
         c->st = CAROM_ERR_PAIR_CAPACITY;
         return 0;

@@ -21,12 +21,43 @@ static cr_v2 cr_normal(const cr_body *b, const cr_shape *sh, int i)
     return cr_rotate(b->q, sh->norms[i]);
 }
 
-/* Calls fn for each body whose box may overlap q (grid, or every body). */
+typedef struct cr_grid_visit {
+    const carom_world *w;
+    cr_query_fn fn;
+    void *ctx;
+} cr_grid_visit;
+
+/* The grid's answer, but for the bodies that left their grid box. */
+static int cr_unless_escaped(void *ctx, int s)
+{
+    const cr_grid_visit *g = (const cr_grid_visit *)ctx;
+    return (g->w->bodies[s].flags & CR_BODY_ESCAPED) ? 1 : g->fn(g->ctx, s);
+}
+
+/* Calls fn for each body whose box may overlap q: from the grid (and the
+ * few bodies the last step pushed out of their grid box), or from every
+ * body. */
 static int cr_candidates(const carom_world *w, const cr_box *q, cr_query_fn fn, void *ctx)
 {
     int i;
-    if (w->grid_valid)
+    if (w->grid_valid && w->escaped_count == 0)
         return cr_broadphase_query(&w->bp, w->boxes, q, fn, ctx);
+    if (w->grid_valid) {
+        cr_grid_visit g;
+        g.w = w;
+        g.fn = fn;
+        g.ctx = ctx;
+        if (!cr_broadphase_query(&w->bp, w->boxes, q, cr_unless_escaped, &g))
+            return 0;
+        for (i = 0; i < w->escaped_count; ++i) {
+            int s = w->regrown[i];
+            cr_box b;
+            cr_shape_box(&w->info[s].shape, w->bodies[s].x, w->bodies[s].q, &b);
+            if (cr_boxes_overlap(q, &b) && !fn(ctx, s))
+                return 0;
+        }
+        return 1;
+    }
     for (i = 0; i < w->slot_count; ++i) {
         cr_box b;
         if (!(w->bodies[i].flags & CR_BODY_ALIVE))
@@ -170,20 +201,31 @@ static int cr_ray_shape(const carom_world *w, int s, cr_v2 p0, cr_v2 d, float *t
     const cr_body *b = &w->bodies[s];
     const cr_shape *sh = &w->info[s].shape;
     if (sh->kind == CAROM_SHAPE_CIRCLE) {
-        cr_v2 f = cr_vsub(p0, b->x);
-        float a = cr_vdot(d, d), bb = cr_vdot(f, d);
-        float c = cr_sub(cr_vdot(f, f), cr_mul(sh->radius, sh->radius));
-        float disc, t;
-        if (!cr_gt(a, 0.0f) || cr_lt(c, 0.0f))
+        /* From the closest approach m of the line to the centre, not from
+         * b^2 - a c, which cancels when the ray is long against the
+         * radius; the normal is the centre-to-hit vector m - h u, made
+         * unit. */
+        cr_v2 f = cr_vsub(p0, b->x), m, u, n;
+        float a = cr_vdot(d, d), r2 = cr_mul(sh->radius, sh->radius);
+        float len, tc, h, nn;
+        if (!cr_gt(a, 0.0f) || cr_lt(cr_vdot(f, f), r2))
             return 0; /* no length, or starting inside */
-        disc = cr_sub(cr_mul(bb, bb), cr_mul(a, c));
-        if (cr_lt(disc, 0.0f))
+        len = cr_sqrt(a);
+        u = cr_vscale(cr_div(1.0f, len), d);
+        tc = cr_neg(cr_vdot(f, u)); /* distance along u to the closest approach */
+        m = cr_vadd(f, cr_vscale(tc, u));
+        h = cr_sub(r2, cr_vdot(m, m)); /* squared half chord */
+        if (cr_lt(h, 0.0f))
             return 0;
-        t = cr_div(cr_neg(cr_add(bb, cr_sqrt(disc))), a);
-        if (cr_lt(t, 0.0f) || cr_gt(t, 1.0f))
+        h = cr_sqrt(h);
+        *t_out = cr_div(cr_sub(tc, h), len);
+        if (cr_lt(*t_out, 0.0f) || cr_gt(*t_out, 1.0f))
             return 0;
-        *t_out = t;
-        *n_out = cr_vscale(cr_div(1.0f, sh->radius), cr_vadd(f, cr_vscale(t, d)));
+        n = cr_vsub(m, cr_vscale(h, u));
+        nn = cr_vlen(n);
+        if (!cr_gt(nn, 0.0f))
+            return 0;
+        *n_out = cr_vscale(cr_div(1.0f, nn), n);
         return 1;
     }
     {
@@ -269,6 +311,9 @@ static carom_status cr_raycast(const carom_world *w, carom_vec2 from, carom_vec2
     cr_box q;
     if (!cr_valid_box(from, to))
         return CAROM_ERR_NOT_FINITE;
+    /* |to - from|^2 must stay finite (a hit's fields are then finite) */
+    if (!cr_v2_within(from, CAROM_LIMIT_MAX_LENGTH) || !cr_v2_within(to, CAROM_LIMIT_MAX_LENGTH))
+        return CAROM_ERR_OUT_OF_RANGE;
     c.w = w;
     c.p0 = from;
     c.d = cr_vsub(to, from);

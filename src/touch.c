@@ -85,6 +85,64 @@ static int cr_pair_touches(const carom_world *w, const cr_pair *p, int *sensor)
     return p->contact >= 0 && (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING);
 }
 
+#if CAROM_ENABLE_SENSORS
+typedef struct cr_escape_ctx {
+    carom_world *w;
+    int body, n;
+} cr_escape_ctx;
+
+/* A sensor overlap of an escaped body (touch list, deduplicated later). */
+static int cr_escape_visit(void *ctx, int other)
+{
+    cr_escape_ctx *c = (cr_escape_ctx *)ctx;
+    carom_world *w = c->w;
+    const cr_body *A = &w->bodies[c->body], *B = &w->bodies[other];
+    int a = c->body < other ? c->body : other;
+    if (other == c->body || c->n >= w->touch_cap ||
+        !((A->flags | B->flags) & CR_BODY_SENSOR) || !cr_may_collide(w, c->body, other))
+        return 1;
+    if (!cr_lt(cr_separation(&w->info[c->body].shape, A->x, A->q, &w->info[other].shape,
+                             B->x, B->q),
+               0.0f))
+        return 1;
+    w->touch_next[c->n].a = a;
+    w->touch_next[c->n].b = (a == c->body ? other : c->body) | CR_TOUCH_SENSOR;
+    ++c->n;
+    return 1;
+}
+
+static int cr_escape_grid_visit(void *ctx, int other)
+{
+    const cr_escape_ctx *c = (const cr_escape_ctx *)ctx;
+    return (c->w->bodies[other].flags & CR_BODY_ESCAPED) ? 1 : cr_escape_visit(ctx, other);
+}
+
+/* The pairs hold the sensor overlaps of the boxes the step swept; a body
+ * pushed out of its box (cr_note_escapes) is tested where it ended. */
+static int cr_escaped_overlaps(carom_world *w, int n)
+{
+    cr_escape_ctx c;
+    int i, j;
+    c.w = w;
+    c.n = n;
+    for (i = 0; i < w->escaped_count; ++i) {
+        int s = w->regrown[i];
+        cr_box b;
+        c.body = s;
+        cr_shape_box(&w->info[s].shape, w->bodies[s].x, w->bodies[s].q, &b);
+        cr_broadphase_query(&w->bp, w->boxes, &b, cr_escape_grid_visit, &c);
+        for (j = i + 1; j < w->escaped_count; ++j) {
+            int o = w->regrown[j];
+            cr_box ob;
+            cr_shape_box(&w->info[o].shape, w->bodies[o].x, w->bodies[o].q, &ob);
+            if (cr_boxes_overlap(&b, &ob))
+                cr_escape_visit(&c, o);
+        }
+    }
+    return c.n;
+}
+#endif
+
 void cr_touch_update(carom_world *w)
 {
     int n = 0, i, j, k;
@@ -103,6 +161,10 @@ void cr_touch_update(carom_world *w)
         w->touch_next[n].b = p->b | (sensor ? CR_TOUCH_SENSOR : 0);
         ++n;
     }
+#if CAROM_ENABLE_SENSORS
+    if (w->escaped_count > 0 && w->grid_valid)
+        n = cr_escaped_overlaps(w, n);
+#endif
     /* what nothing could change keeps touching */
     for (i = 0; i < w->touch_count && n < w->touch_cap; ++i) {
         const cr_touch *t = &w->touch[i];

@@ -14,7 +14,7 @@
  * (asleep or static) keep their state. */
 void cr_touch_update(carom_world *w);
 
-/* Body slot s is removed or teleported: its touches end without event. */
+/* Body slot s is removed: its touches end without event. */
 void cr_touch_forget(carom_world *w, int s);
 
 #endif /* CAROM_TOUCH_H */

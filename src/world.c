@@ -345,6 +345,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->max_touch_events = c.touch_events;
     w->def.max_touch_events = c.touch_events;
     w->grid_valid = 0;
+    w->escaped_count = 0;
     w->active = CR_AT(active, int);
     w->active_count = 0;
 #undef CR_AT
@@ -500,6 +501,10 @@ static carom_status cr_find_pairs(carom_world *w)
     int i, n = 0;
     long found;
     CR_PHASE(w, CAROM_PHASE_BROADPHASE);
+    /* the last grid's escapes are gone with it */
+    for (i = 0; i < w->escaped_count; ++i)
+        w->bodies[w->regrown[i]].flags &= (unsigned short)~CR_BODY_ESCAPED;
+    w->escaped_count = 0;
     for (i = 0; i < w->slot_count; ++i) {
         cr_mover m;
         if (!(w->bodies[i].flags & CR_BODY_ALIVE))
@@ -531,6 +536,42 @@ static carom_status cr_find_pairs(carom_world *w)
     cr_pairs_sort(w->pairs, w->pair_tmp, w->pair_count, w->bp.count, w->slot_count);
     cr_pairs_link(w);
     return CAROM_OK;
+}
+
+/* Did the step leave body slot s outside its grid box? An impulse can
+ * push a body past the box of its predicted motion (the solver's
+ * push-out; an impact beyond a regrown box). The circle of the shape's
+ * extent about the centre answers most bodies at once. */
+static int cr_escaped(const carom_world *w, int s)
+{
+    const cr_body *b = &w->bodies[s];
+    const cr_shape *sh = &w->info[s].shape;
+    const cr_box *g = &w->boxes[s];
+    cr_box e;
+    if (cr_ge(cr_sub(b->x.x, sh->extent), g->lo_x) && cr_le(cr_add(b->x.x, sh->extent), g->hi_x) &&
+        cr_ge(cr_sub(b->x.y, sh->extent), g->lo_y) && cr_le(cr_add(b->x.y, sh->extent), g->hi_y))
+        return 0;
+    if (sh->kind == CAROM_SHAPE_CIRCLE)
+        return 1;
+    cr_shape_box(sh, b->x, b->q, &e);
+    return cr_lt(e.lo_x, g->lo_x) || cr_gt(e.hi_x, g->hi_x) || cr_lt(e.lo_y, g->lo_y) ||
+           cr_gt(e.hi_y, g->hi_y);
+}
+
+void cr_note_escapes(carom_world *w)
+{
+    int i;
+    /* nothing moved (then the grid is older, its escapes still listed), or
+     * the program moved bodies since the grid was built */
+    if (w->awake_count == 0 || !w->grid_valid)
+        return;
+    for (i = 0; i < w->awake_count; ++i) {
+        int s = w->awake[i];
+        if (cr_escaped(w, s)) {
+            w->bodies[s].flags |= CR_BODY_ESCAPED;
+            w->regrown[w->escaped_count++] = s;
+        }
+    }
 }
 
 /* Sync the bodies the solver takes this substep to its start. */
@@ -758,8 +799,14 @@ carom_status carom_world_step(carom_world *w)
     if (st != CAROM_OK) {
         /* undo: the bodies as they were, the impulses and counters too */
         int err = w->error_body;
-        for (i = 0; i < w->slot_count; ++i)
+        for (i = 0; i < w->slot_count; ++i) {
             w->bodies[i] = w->backup[i];
+            w->bodies[i].flags &= (unsigned short)~CR_BODY_ESCAPED;
+        }
+        if (w->escaped_count > 0) {
+            w->escaped_count = 0; /* (the grid was not rebuilt) */
+            w->grid_valid = 0;
+        }
         w->stats = saved;
         w->event_count = 0;
         w->events_dropped = 0;
@@ -768,12 +815,14 @@ carom_status carom_world_step(carom_world *w)
         w->error_body = err;
         return st;
     }
-    {
+    if (w->awake_count > 0) {
+        /* (a step with nothing awake stored none: the warm starts stay) */
         cr_warm *t = w->warm;
         w->warm = w->warm_next;
         w->warm_count = w->warm_next_count;
         w->warm_next = t;
     }
+    cr_note_escapes(w);
     cr_touch_update(w);
     ++w->steps;
     ++w->stats.steps;

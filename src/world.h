@@ -152,11 +152,19 @@ struct carom_world {
     int touch_event_count, touch_events_dropped, max_touch_events;
 
     /* queries: the broadphase grid still holds every body (no body was
-     * added, removed or moved by the program since it was built) */
+     * added, removed or moved by the program since it was built); the
+     * bodies that ended the step outside their grid box are listed in
+     * regrown[0 .. escaped_count) (free between steps) and flagged
+     * CR_BODY_ESCAPED */
     int grid_valid;
+    int escaped_count;
 
     carom_profile *profile;   /* attached counters, or NULL */
 };
+
+/* The bodies that left their grid box during the step, after it (the
+ * grid and w->boxes are the step's): list and flag them. */
+void cr_note_escapes(carom_world *w);
 
 /* A body's id: its slot and the slot's generation. */
 int cr_body_id(const carom_world *w, int slot);

@@ -505,6 +505,59 @@ START_TEST(test_touch_events_begin_end_and_full_buffer)
 }
 END_TEST
 
+
+/* A teleport or a new filter that leaves a touching pair touching begins
+ * no second touch; a filter that ends the pair ends the touch (found by
+ * the API fuzzer: both calls dropped the touch, which then began again). */
+START_TEST(test_teleport_and_filter_keep_a_touch_that_holds)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_body_state st;
+    tw t;
+    int g, b, k, n, begins = 0, ends = 0;
+    const carom_touch_event *e;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    g = add_ground(&t);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    bd.position.y = 0.5f;
+    b = tw_add(&t, &bd);
+    for (k = 0; k < 4; ++k) {
+        tw_steps(&t, 1);
+        e = carom_world_touch_events(t.w, &n);
+        begins += n;
+    }
+    ck_assert_int_eq(begins, 1);
+    ck_assert_int_eq(carom_body_get_state(t.w, b, &st), CAROM_OK);
+    for (k = 0; k < 3; ++k) {
+        /* k 0: teleport in place; 1: the same filter again; 2: a 1 cm shift */
+        if (k == 0)
+            ck_assert_int_eq(carom_body_set_transform(t.w, b, st.position, st.rotation), CAROM_OK);
+        else if (k == 1)
+            ck_assert_int_eq(carom_body_set_filter(t.w, b, 1u, 0xffffffffu, 0), CAROM_OK);
+        else
+            ck_assert_int_eq(carom_body_set_transform(t.w, b,
+                                                      (carom_vec2){st.position.x + 0.01f,
+                                                                   st.position.y},
+                                                      st.rotation),
+                             CAROM_OK);
+        tw_steps(&t, 1);
+        e = carom_world_touch_events(t.w, &n);
+        ck_assert_int_eq(n, 0);
+    }
+    /* a filter that no longer meets the ground: one end event */
+    ck_assert_int_eq(carom_body_set_filter(t.w, b, 2u, 0xfffffffeu, 0), CAROM_OK);
+    tw_steps(&t, 1);
+    e = carom_world_touch_events(t.w, &n);
+    ck_assert_int_eq(n, 1);
+    ck_assert(e[0].begin == 0 && e[0].body_a == g && e[0].body_b == b);
+    ++ends;
+    ck_assert_int_eq(ends, 1);
+    tw_free(&t);
+}
+END_TEST
+
 /* ---- queries -------------------------------------------------------------------- */
 
 typedef struct found_set {
@@ -645,6 +698,123 @@ START_TEST(test_raycasts_are_exact_and_ordered)
 }
 END_TEST
 
+
+/* A ray a thousand times longer than the circle it hits: the hit from the
+ * closest approach, without the cancellation of b^2 - a c (found by the
+ * API fuzzer: |normal| was 1.017 for a 1 km ray and a 0.5 m circle). The
+ * reference is the same intersection in double precision. */
+START_TEST(test_long_ray_hits_a_circle_exactly)
+{
+    carom_world_def wd = zero_g(1);
+    tw t = tw_make(&wd);
+    carom_ray_hit h;
+    carom_vec2 p0 = {-1000.0f, -299.75f}, p1 = {1000.0f, 300.5f};
+    double dx = (double)p1.x - p0.x, dy = (double)p1.y - p0.y;
+    double a = dx * dx + dy * dy, fd = p0.x * dx + p0.y * dy;
+    double c = (double)p0.x * p0.x + (double)p0.y * p0.y - 0.25;
+    double tt = (-fd - sqrt(fd * fd - a * c)) / a;
+    double hx = p0.x + tt * dx, hy = p0.y + tt * dy;
+    int found;
+    add_ball(&t, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f);
+    ck_assert_int_eq(carom_world_raycast(t.w, p0, p1, &h, &found), CAROM_OK);
+    ck_assert_int_eq(found, 1);
+    ck_assert_close(h.fraction, tt, 1e-6);
+    ck_assert_close(h.normal.x * h.normal.x + h.normal.y * h.normal.y, 1.0, 1e-6);
+    /* float endpoints of 1e3 m carry 6e-5 m: the direction to 3e-4 */
+    ck_assert_close(h.normal.x, hx / 0.5, 3e-4);
+    ck_assert_close(h.normal.y, hy / 0.5, 3e-4);
+    tw_free(&t);
+}
+END_TEST
+
+/* A ray's ends lie within CAROM_LIMIT_MAX_LENGTH, like every position
+ * (found by the API fuzzer: a 1e19 m ray hit with a NaN fraction). */
+START_TEST(test_ray_beyond_the_length_limit_is_refused)
+{
+    carom_world_def wd = zero_g(1);
+    tw t = tw_make(&wd);
+    carom_ray_hit h;
+    int found = -1, n = -1;
+    add_ball(&t, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f);
+    ck_assert_int_eq(carom_world_raycast(t.w, (carom_vec2){-1.0e19f, 0.0f},
+                                         (carom_vec2){1.0e19f, 0.0f}, &h, &found),
+                     CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_world_raycast_all(t.w, (carom_vec2){0.0f, -2.0f * CAROM_LIMIT_MAX_LENGTH},
+                                             (carom_vec2){0.0f, 2.0f}, &h, 1, &n),
+                     CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_world_raycast(t.w, (carom_vec2){-CAROM_LIMIT_MAX_LENGTH, 0.0f},
+                                         (carom_vec2){CAROM_LIMIT_MAX_LENGTH, 0.0f}, &h, &found),
+                     CAROM_OK);
+    ck_assert_int_eq(found, 1);
+    ck_assert_close(h.point.x, -0.5, 1e-6 * CAROM_LIMIT_MAX_LENGTH);
+    ck_assert_close(h.normal.x, -1.0, 1e-6);
+    tw_free(&t);
+}
+END_TEST
+
+/* A ball overlapping a heavy triangle is pushed out in the first step
+ * far beyond the box its own motion swept: queries and a sensor still see
+ * it where it ended (found by the API fuzzer). Expected: the ball's centre
+ * is inside it; it overlaps the sensor circle exactly when the centres are
+ * closer than the sum of radii. */
+START_TEST(test_queries_and_sensors_see_a_body_pushed_out_of_its_box)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def sd = carom_default_body_def(), td = carom_default_body_def();
+    carom_vec2 tri[3] = {{87.758255f, 47.9425545f}, {-85.3986053f, 52.0295982f},
+                         {-2.35964704f, -99.9721603f}};
+    carom_body_state bs;
+    tw t;
+    int sensor, ball, k;
+    wd.max_bodies = 3;
+    wd.substeps = 4;
+    wd.iterations = 1;
+    wd.relax_iterations = 2;
+    t = tw_make(&wd);
+    sd.type = CAROM_BODY_STATIC;
+    sd.is_sensor = 1;
+    sd.radius = 1.0f;
+    sd.position.x = 0.5f;
+    sensor = tw_add(&t, &sd);
+    td.shape = CAROM_SHAPE_POLYGON;
+    td.vertex_count = 3;
+    memcpy(td.vertices, tri, sizeof tri);
+    td.position.x = -5.0f;
+    td.position.y = 1.0f;
+    tw_add(&t, &td);
+    ball = add_ball(&t, 0.5f, -3.0f, 1.0f, 0.0f, 0.0f);
+    for (k = 0; k < 3; ++k) {
+        found_set f;
+        int n, i, touching = 0, overlap;
+        const carom_touch_event *e;
+        double dx, dy;
+        static int was_touching = 0;
+        tw_steps(&t, 1);
+        bs = tw_state(&t, ball);
+        f.n = 0;
+        ck_assert_int_eq(carom_world_query_point(t.w, bs.position, collect, &f), CAROM_OK);
+        ck_assert(has(&f, ball));
+        f.n = 0;
+        ck_assert_int_eq(carom_world_query_box(t.w, (carom_vec2){bs.position.x - 0.1f, bs.position.y - 0.1f},
+                                               (carom_vec2){bs.position.x + 0.1f, bs.position.y + 0.1f},
+                                               collect, &f),
+                         CAROM_OK);
+        ck_assert(has(&f, ball));
+        e = carom_world_touch_events(t.w, &n);
+        touching = was_touching;
+        for (i = 0; i < n; ++i)
+            if (e[i].sensor && e[i].body_a == sensor && e[i].body_b == ball)
+                touching = e[i].begin;
+        dx = bs.position.x - 0.5;
+        dy = bs.position.y;
+        overlap = dx * dx + dy * dy < 1.5 * 1.5;
+        ck_assert_int_eq(touching, overlap);
+        was_touching = touching;
+    }
+    tw_free(&t);
+}
+END_TEST
+
 /* NULL worlds and bad ids through every new call. */
 START_TEST(test_new_calls_refuse_null_and_bad_ids)
 {
@@ -756,8 +926,12 @@ Suite *suite_api(void)
     tcase_add_test(tf, test_filter_set_after_creation);
     tcase_add_test(te, test_sensor_reports_overlap_without_impulse);
     tcase_add_test(te, test_touch_events_begin_end_and_full_buffer);
+    tcase_add_test(te, test_teleport_and_filter_keep_a_touch_that_holds);
     tcase_add_test(tq, test_box_and_point_queries_are_exact);
     tcase_add_test(tq, test_raycasts_are_exact_and_ordered);
+    tcase_add_test(tq, test_long_ray_hits_a_circle_exactly);
+    tcase_add_test(tq, test_ray_beyond_the_length_limit_is_refused);
+    tcase_add_test(tq, test_queries_and_sensors_see_a_body_pushed_out_of_its_box);
     suite_add_tcase(s, tb);
     suite_add_tcase(s, tk);
     suite_add_tcase(s, tr);

@@ -735,6 +735,56 @@ START_TEST(test_box_pyramid_hit_from_above_stays_symmetric)
 }
 END_TEST
 
+
+/* A heavy ball strikes a light one towards a sleeping ball within one
+ * step: the light ball leaves the box its motion was expected to sweep
+ * and meets the sleeper mid-step. A sleeping body is not simulated, so it
+ * takes no impulse there (found by the API fuzzer: it was left asleep and
+ * moving); the next step wakes it and the balls push it along. Expected:
+ * every sleeping body at rest after every step, the sleeper moved, and
+ * the balls' horizontal momentum conserved (frictionless ground). */
+START_TEST(test_impulse_into_a_sleeping_body_mid_step_wakes_it_next_step)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, -10.0f, 1.0f / 60.0f, 4);
+    carom_body_def bd = carom_default_body_def();
+    const double pi = 3.14159265358979323846;
+    double m = pi * 0.25, p0, p = 0.0;
+    int ids[3], k, i;
+    tw t = tw_make(&wd);
+    add_static_box(&t, 10.0f, 0.5f, 0.0f, -0.5f, 1.0f);
+    bd.friction = 0.0f;
+    bd.restitution = 1.0f;
+    bd.position.y = 0.5f;
+    ids[0] = tw_add(&t, &bd); /* light, at x = 0 */
+    bd.position.x = 1.2f;
+    ids[1] = tw_add(&t, &bd); /* the sleeper, 0.2 m to its right */
+    for (k = 0; k < 240 && (carom_body_is_awake(t.w, ids[0]) ||
+                            carom_body_is_awake(t.w, ids[1])); ++k)
+        tw_steps(&t, 1);
+    ck_assert(!carom_body_is_awake(t.w, ids[0]) && !carom_body_is_awake(t.w, ids[1]));
+    bd.position.x = -1.01f;
+    bd.velocity.x = 10.0f;
+    bd.density = 1000.0f;
+    ids[2] = tw_add(&t, &bd); /* heavy, reaches the light ball at once */
+    p0 = 1000.0 * m * 10.0;
+    for (k = 0; k < 30; ++k) {
+        tw_steps(&t, 1);
+        p = 0.0;
+        for (i = 0; i < 3; ++i) {
+            carom_body_state st = tw_state(&t, ids[i]);
+            if (!carom_body_is_awake(t.w, ids[i])) {
+                ck_assert(st.velocity.x == 0.0f && st.velocity.y == 0.0f);
+                ck_assert(st.angular_velocity == 0.0f);
+            }
+            p += (i == 2 ? 1000.0 * m : m) * st.velocity.x;
+        }
+    }
+    ck_assert_close(p, p0, 1e-4 * p0);
+    ck_assert(tw_state(&t, ids[1]).position.x > 1.5f);
+    tw_free(&t);
+}
+END_TEST
+
 Suite *suite_events(void)
 {
     Suite *s = suite_create("events");
@@ -750,6 +800,7 @@ Suite *suite_events(void)
     tcase_add_test(tn, test_fast_bullet_never_passes_a_thin_static_wall);
     tcase_add_test(tn, test_fast_bullet_never_passes_a_thin_dynamic_wall);
     tcase_add_test(tc, test_isolated_bodies_conserve_momentum);
+    tcase_add_test(tc, test_impulse_into_a_sleeping_body_mid_step_wakes_it_next_step);
     tcase_add_test(tc, test_polygon_hit_off_centre_conserves_linear_and_angular_momentum);
     tcase_add_test(tc, test_elastic_gas_of_1000_circles_keeps_kinetic_energy);
     tcase_add_test(to, test_cradle_with_gaps_passes_the_impulse_along_one_impact_at_a_time);

@@ -51,7 +51,7 @@ check_runs() {
     case $1 in
     fuzz_scene_parse) echo 400000 ;;
     fuzz_scene_run) echo 8000 ;;
-    fuzz_api) echo 30000 ;;
+    fuzz_api) echo 15000 ;;
     *) echo 10000 ;;
     esac
 }

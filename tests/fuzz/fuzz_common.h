@@ -3,10 +3,14 @@
  * (tests/fuzz/fuzz_*.c). Header-only; every function is static.
  *
  * What is checked, and where the promise is written:
+ *   - every call returns a named status (fz_check_status_named);
  *   - a call that returns an error leaves the world as it was: every
- *     body's state, awake flag, mass, the body count, time, step count,
- *     stats, method and tolerances, compared bit for bit (carom.h, "Status",
- *     and carom_world_step: only the event list may change);
+ *     body's state, awake flag, mass, validity, type, velocity and user
+ *     data, the body count, time, step count, stats, method and
+ *     tolerances, compared bit for bit (carom.h, "Status", and
+ *     carom_world_step: only the event list may change); where a promise
+ *     covers them, also the last step's error body, impact and touch
+ *     events (fz_expect_same_results);
  *   - after a call that returns CAROM_OK every body state is finite, its
  *     centre and velocity are inside CAROM_LIMIT_MAX_LENGTH / _MAX_SPEED
  *     (the end-of-step check promises an error otherwise) and its rotation
@@ -37,6 +41,8 @@
 #include "carom.h"
 
 #define FZ_MAX_BODIES 64
+/* The slot of an id (carom_config.h: the low CAROM_ID_INDEX_BITS bits). */
+#define FZ_SLOT_MASK ((int)((1u << CAROM_ID_INDEX_BITS) - 1u))
 
 /* What the harness is doing now: printed with every violation. */
 static char fz_where[768];
@@ -119,6 +125,12 @@ typedef struct fz_body_snap {
     int awake;
     int mass_status;
     float mass, inertia;
+    int valid;                 /* carom_body_is_valid */
+    int type_status, type;     /* carom_body_get_type */
+    int vel_status;            /* carom_body_get_velocity */
+    carom_vec2 vel;
+    float angvel;
+    uintptr_t user;            /* carom_body_get_user_data */
 } fz_body_snap;
 
 typedef struct fz_snap {
@@ -132,7 +144,23 @@ typedef struct fz_snap {
     carom_tolerances tol;
     int n;                     /* bodies snapshotted */
     fz_body_snap b[FZ_MAX_BODIES];
+    /* the last step's results (compared only where a promise covers them:
+     * fz_expect_same_results) */
+    int error_body;
+    int ev_count, ev_dropped, touch_count, touch_dropped;
+    uint32_t ev_hash, touch_hash;
 } fz_snap;
+
+/* FNV-1a over bytes (the event lists are arrays of 4-byte fields). */
+static inline uint32_t fz_hash(const void *p, size_t n)
+{
+    const unsigned char *c = (const unsigned char *)p;
+    uint32_t h = 2166136261u;
+    size_t i;
+    for (i = 0; i < n; ++i)
+        h = (h ^ c[i]) * 16777619u;
+    return h;
+}
 
 static inline void fz_snap_take(const carom_world *w, const int *ids, int n,
                          fz_snap *s)
@@ -152,6 +180,29 @@ static inline void fz_snap_take(const carom_world *w, const int *ids, int n,
         b->awake = carom_body_is_awake(w, ids[i]);
         b->mass_status = (int)carom_body_get_mass(w, ids[i], &b->mass,
                                                   &b->inertia);
+        b->valid = carom_body_is_valid(w, ids[i]);
+        {
+            carom_body_type t = CAROM_BODY_DYNAMIC;
+            b->type_status = (int)carom_body_get_type(w, ids[i], &t);
+            b->type = (int)t;
+        }
+        b->vel_status = (int)carom_body_get_velocity(w, ids[i], &b->vel,
+                                                     &b->angvel);
+        b->user = (uintptr_t)carom_body_get_user_data(w, ids[i]);
+    }
+    s->error_body = carom_world_error_body(w);
+    {
+        const carom_event *ev = carom_world_events(w, &s->ev_count);
+        const carom_touch_event *te = carom_world_touch_events(w,
+                                                               &s->touch_count);
+        s->ev_dropped = carom_world_events_dropped(w);
+        s->touch_dropped = carom_world_touch_events_dropped(w);
+        s->ev_hash = s->ev_count > 0 && ev
+                         ? fz_hash(ev, (size_t)s->ev_count * sizeof *ev)
+                         : 0u;
+        s->touch_hash = s->touch_count > 0 && te
+                            ? fz_hash(te, (size_t)s->touch_count * sizeof *te)
+                            : 0u;
     }
 }
 
@@ -203,6 +254,14 @@ static inline int fz_snap_diff_body(const fz_body_snap *a, const fz_body_snap *b
     FZ_B_INT(mass_status);
     FZ_B_FLOAT(mass);
     FZ_B_FLOAT(inertia);
+    FZ_B_INT(valid);
+    FZ_B_INT(type_status);
+    FZ_B_INT(type);
+    FZ_B_INT(vel_status);
+    FZ_B_FLOAT(vel.x);
+    FZ_B_FLOAT(vel.y);
+    FZ_B_FLOAT(angvel);
+    FZ_B_INT(user);
 #undef FZ_B_INT
 #undef FZ_B_FLOAT
     return 0;
@@ -240,7 +299,46 @@ static inline int fz_snap_diff(const fz_snap *a, const fz_snap *b, char *msg,
     return 0;
 }
 
+/* The last step's results: error body, impact and touch event lists. */
+static inline int fz_snap_diff_results(const fz_snap *a, const fz_snap *b,
+                                       char *msg, size_t len)
+{
+    FZ_CMP_INT(error_body, "carom_world_error_body");
+    FZ_CMP_INT(ev_count, "impact event count");
+    FZ_CMP_INT(ev_dropped, "carom_world_events_dropped");
+    FZ_CMP_INT(ev_hash, "impact events (hash)");
+    FZ_CMP_INT(touch_count, "touch event count");
+    FZ_CMP_INT(touch_dropped, "carom_world_touch_events_dropped");
+    FZ_CMP_INT(touch_hash, "touch events (hash)");
+    return 0;
+}
+
 /* ---- checks after a call ------------------------------------------------- */
+
+/* Every call returns a named status (carom.h, "Status"): one of the enum's
+ * values, which carom_status_string names. */
+static inline void fz_check_status_named(carom_status st, const char *what)
+{
+    const char *name;
+    if ((unsigned)st >= (unsigned)CAROM_STATUS_COUNT)
+        fz_fail("named status", "%s returned %d, not a carom_status", what,
+                (int)st);
+    name = carom_status_string(st);
+    if (!name || !*name)
+        fz_fail("named status", "%s returned %d, which carom_status_string "
+                "does not name", what, (int)st);
+}
+
+/* Body i of two snapshots is the same but for its awake flag (a call that
+ * wakes bodies changed nothing else of them). Returns 0 when equal. */
+static inline int fz_snap_diff_body_but_awake(const fz_body_snap *a,
+                                              const fz_body_snap *b, int i,
+                                              char *msg, size_t len)
+{
+    fz_body_snap c = *b;
+    c.awake = a->awake;
+    return fz_snap_diff_body(a, &c, i, msg, len);
+}
 
 static inline void fz_check_body_state(const char *what, int i,
                                 const carom_body_state *s)
@@ -335,10 +433,11 @@ static inline void fz_check_events(const carom_world *w, const int *ids, int n,
             if (ids[i] == e->body_b)
                 ib = i;
         }
-        if (ia < 0 || ib < 0 || !(ia < ib))
+        if (ia < 0 || ib < 0 ||
+            !((e->body_a & FZ_SLOT_MASK) < (e->body_b & FZ_SLOT_MASK)))
             fz_fail("event body ids", "event %d: body_a %d, body_b %d "
-                    "(not two added bodies with body_a first)", k, e->body_a,
-                    e->body_b);
+                    "(not two bodies of the world with body_a's slot first)",
+                    k, e->body_a, e->body_b);
         if (!fz_finite(e->t) || !fz_finite(e->normal.x) ||
             !fz_finite(e->normal.y) || !fz_finite(e->impulse) ||
             !fz_finite(e->approach_speed))
@@ -509,6 +608,16 @@ static inline void fz_expect_same(const fz_snap *a, const fz_snap *b,
 {
     char msg[256];
     if (fz_snap_diff(a, b, msg, sizeof msg))
+        fz_fail(invariant, "%s: %s", detail, msg);
+}
+
+/* The same, for the last step's results (fz_snap_diff_results). */
+static inline void fz_expect_same_results(const fz_snap *a, const fz_snap *b,
+                                          const char *invariant,
+                                          const char *detail)
+{
+    char msg[256];
+    if (fz_snap_diff_results(a, b, msg, sizeof msg))
         fz_fail(invariant, "%s: %s", detail, msg);
 }
 
