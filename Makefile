@@ -24,6 +24,8 @@ PROF_OBJ := $(LIB_SRC:src/%.c=$(BUILD)/profile/obj/%.o)
 PROF_LIB := $(BUILD)/profile/libcarom.a
 CLI     := $(BUILD)/carom
 TOOL_OBJ := $(BUILD)/tools/scene.o
+# The option parser of build/carom and build/carom-box2d.
+CLI_OPT_OBJ := $(BUILD)/tools/cli_options.o
 TEST_SRC := $(wildcard tests/test_*.c)
 TEST_BIN := $(BUILD)/carom_tests
 
@@ -105,7 +107,7 @@ $(BUILD)/tools/%.o: tools/%.c $(wildcard tools/*.h include/*.h) | $(BUILD)/tools
 $(BUILD)/tools/carom_cli.o: tools/carom_cli.c $(wildcard tools/*.h include/*.h) | $(BUILD)/tools
 	$(CC) $(CPPFLAGS) $(PROF_FLAGS) $(TOOL_CFLAGS) -c $< -o $@
 
-$(CLI): $(BUILD)/tools/carom_cli.o $(TOOL_OBJ) $(PROF_LIB)
+$(CLI): $(BUILD)/tools/carom_cli.o $(CLI_OPT_OBJ) $(TOOL_OBJ) $(PROF_LIB)
 	$(CC) $(OPT) $(LDFLAGS) $^ -o $@ -lm
 
 $(BUILD)/obj $(BUILD)/tools $(BUILD)/tests $(BUILD)/profile/obj:

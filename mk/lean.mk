@@ -58,7 +58,7 @@ $(LEAN_DIR)/tools/%.o: tools/%.c $(wildcard tools/*.h tools/render/*.h include/*
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(PROF_FLAGS) $(LEAN_INCLUDE) $(TOOL_CFLAGS) -c $< -o $@
 
-$(LEAN_CLI): $(LEAN_DIR)/tools/carom_cli.o $(LEAN_DIR)/tools/scene.o \
+$(LEAN_CLI): $(LEAN_DIR)/tools/carom_cli.o $(LEAN_DIR)/tools/cli_options.o $(LEAN_DIR)/tools/scene.o \
              $(LEAN_DIR)/tools/render/render.o $(LEAN_PROF_LIB)
 	$(CC) $(OPT) $(LDFLAGS) $^ -o $@ -lm
 

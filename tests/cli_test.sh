@@ -452,6 +452,19 @@ run run "$tmp/ball.scene" --frobnicate=1
 expect_rc 2 "unknown --opt=value"
 stderr_has "--frobnicate" "unknown --opt=value: stderr names the option"
 
+run render "$tmp/ball.scene" --steps=20 --fps=10 -o="$tmp/r5.svg"
+check "render -o=FILE: same SVG as -o FILE" cmp -s "$tmp/r5.svg" "$tmp/r4.svg"
+run run --steps 7 -- "$tmp/ball.scene"
+expect_rc 0 "-- before the scene"
+run run -- "$tmp/ball.scene" --steps
+expect_rc 2 "after --, an option is an operand"
+stderr_has "more than one scene given ('--steps')" "after --: --steps is a second scene"
+run run "$tmp/ball.scene" --steps
+expect_rc 2 "an option without its value (--steps)"
+check "--steps without its value: the message and the hint, exactly" \
+    test "$(cat "$tmp/err")" = "carom: --steps needs a value (N)
+(try 'carom --help')"
+
 # ---- large --trace ----------------------------------------------------------------
 
 run run "$tmp/ball.scene" --steps 5000000 --trace "$tmp/huge.csv"

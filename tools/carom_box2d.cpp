@@ -29,12 +29,14 @@
 #include <vector>
 
 #include "carom.h"
+#include "cli_options.h"
 #include "scene.h"
 
 namespace {
 
+const char PROG[] = "carom-box2d";
 const int EXIT_SIM = 1;
-const int EXIT_USAGE = 2;
+const int EXIT_USAGE = CLI_EXIT_USAGE;
 
 const char usage[] =
     "usage: carom-box2d run SCENE [options]\n"
@@ -50,6 +52,8 @@ const char usage[] =
     "poses, velocities and constant forces; restitution threshold = the\n"
     "scene's rest-speed; sleeping off. Box2D mixes restitution (max) and\n"
     "friction (sqrt) as carom does.\n"
+    "\n"
+    "Options are written --opt VALUE or --opt=VALUE.\n"
     "\n"
     "options:\n"
     "  --steps N                  number of steps (overrides steps=)\n"
@@ -87,25 +91,6 @@ const char usage[] =
     "closer than 0.0025 m are welded, collinear ones dropped) is an error.\n"
     "\n"
     "exit status: 0 ok, 1 simulation error, 2 bad usage or bad scene\n";
-
-int usage_error(const char *fmt, const char *arg)
-{
-    std::fprintf(stderr, "carom-box2d: ");
-    std::fprintf(stderr, fmt, arg);
-    std::fprintf(stderr, "\n(try 'carom-box2d --help')\n");
-    return EXIT_USAGE;
-}
-
-bool parse_long(const char *v, long lo, long hi, long *out)
-{
-    char *end;
-    errno = 0;
-    long x = std::strtol(v, &end, 10);
-    if (*v == '\0' || *end != '\0' || errno || x < lo || x > hi)
-        return false;
-    *out = x;
-    return true;
-}
 
 /* Angle of a rotation in (-pi, pi], like carom_rot_angle. */
 double wrap_angle(const b2Rot &q)
@@ -388,73 +373,72 @@ struct options {
 /* Go on with the run (not an exit status). */
 const int CONTINUE = -1;
 
-/* The value of option `a`, argv[i + 1], into *o. Returns CONTINUE, or an
- * exit status after a message. */
-int set_option_value(options *o, const char *a, const char *v)
+enum option_id {
+    OPT_STEPS, OPT_DT, OPT_VEL_ITERS, OPT_POS_ITERS, OPT_TRACE, OPT_EVENTS, OPT_MASSES,
+    OPT_BULLETS, OPT_TIME, OPT_QUIET, OPT_HELP
+};
+
+const unsigned CMD_RUN = 1u;
+
+/* The options of `run`, as `usage` lists them. A value's name is "": the
+ * messages name none ("--steps needs a value"). */
+const cli_option run_options[] = {
+    {OPT_STEPS, "steps", 0, "", CMD_RUN, nullptr},
+    {OPT_DT, "dt", 0, "", CMD_RUN, nullptr},
+    {OPT_VEL_ITERS, "velocity-iterations", 0, "", CMD_RUN, nullptr},
+    {OPT_POS_ITERS, "position-iterations", 0, "", CMD_RUN, nullptr},
+    {OPT_TRACE, "trace", 0, "", CMD_RUN, nullptr},
+    {OPT_EVENTS, "events", 0, "", CMD_RUN, nullptr},
+    {OPT_MASSES, "masses", 0, "", CMD_RUN, nullptr},
+    {OPT_BULLETS, "bullets", 0, nullptr, CMD_RUN, nullptr},
+    {OPT_TIME, "time", 0, nullptr, CMD_RUN, nullptr},
+    {OPT_QUIET, "quiet", 0, nullptr, CMD_RUN, nullptr},
+    {OPT_HELP, "help", 'h', nullptr, CMD_RUN, nullptr},
+};
+
+/* Option p.opt into *o: 0, or an exit status after a message. */
+int set_option(options *o, const cli_parser &p)
 {
-    if (!std::strcmp(a, "--steps")) {
-        if (!parse_long(v, 0, 1000000000L, &o->steps))
-            return usage_error("--steps: want an integer in [0, 1e9], got '%s'", v);
-    } else if (!std::strcmp(a, "--dt")) {
-        char *end;
-        errno = 0;
-        o->dt = std::strtod(v, &end);
-        if (*v == '\0' || *end != '\0' || errno || !std::isfinite(o->dt) || !(o->dt > 0.0) ||
-            o->dt > 1.0e30)
-            return usage_error("--dt: want a finite number > 0, got '%s'", v);
-    } else if (!std::strcmp(a, "--velocity-iterations")) {
-        if (!parse_long(v, 0, 1000, &o->vel_iters))
-            return usage_error("--velocity-iterations: want an integer in [0, 1000], got '%s'", v);
-    } else if (!std::strcmp(a, "--position-iterations")) {
-        if (!parse_long(v, 0, 1000, &o->pos_iters))
-            return usage_error("--position-iterations: want an integer in [0, 1000], got '%s'", v);
-    } else if (!std::strcmp(a, "--trace")) {
-        o->trace_path = v;
-    } else if (!std::strcmp(a, "--events")) {
-        o->events_path = v;
-    } else {
-        o->masses_path = v;
+    switch ((option_id)p.opt->id) {
+    case OPT_STEPS: return cli_long(&p, 0, 1000000000L, "an integer in [0, 1e9]", &o->steps);
+    case OPT_DT: return cli_double(&p, 0.0, CLI_OPEN, 1.0e30, "a finite number > 0", &o->dt);
+    case OPT_VEL_ITERS: return cli_long(&p, 0, 1000, nullptr, &o->vel_iters);
+    case OPT_POS_ITERS: return cli_long(&p, 0, 1000, nullptr, &o->pos_iters);
+    case OPT_TRACE: o->trace_path = p.value; break;
+    case OPT_EVENTS: o->events_path = p.value; break;
+    case OPT_MASSES: o->masses_path = p.value; break;
+    case OPT_BULLETS: o->bullets = true; break;
+    case OPT_TIME: o->timing = true; break;
+    case OPT_QUIET: o->quiet = true; break;
+    case OPT_HELP: break;
     }
-    return CONTINUE;
+    return 0;
 }
 
 /* The options of `run`. Returns CONTINUE, or an exit status (0 after
  * --help). */
 int parse_run_options(int argc, char **argv, options *o)
 {
-    static const char *const with_value[] = {"--steps", "--dt", "--trace", "--events",
-                                             "--masses", "--velocity-iterations",
-                                             "--position-iterations"};
-    for (int i = 0; i < argc; ++i) {
-        const char *a = argv[i];
-        bool takes_value = false;
-        for (const char *w : with_value)
-            takes_value = takes_value || !std::strcmp(a, w);
-        if (!std::strcmp(a, "-h") || !std::strcmp(a, "--help")) {
+    cli_parser p;
+    cli_start(&p, PROG, run_options, (int)(sizeof run_options / sizeof run_options[0]),
+              CMD_RUN, argc, argv);
+    cli_item item;
+    while ((item = cli_next(&p)) != CLI_END) {
+        if (item == CLI_ERROR)
+            return EXIT_USAGE;
+        if (item == CLI_OPERAND) {
+            if (o->scene_path)
+                return cli_usage_error(PROG, "more than one scene given ('%s')", p.value);
+            o->scene_path = p.value;
+        } else if (p.opt->id == OPT_HELP) {
             std::fputs(usage, stdout);
             return 0;
-        } else if (!std::strcmp(a, "--bullets")) {
-            o->bullets = true;
-        } else if (!std::strcmp(a, "--time")) {
-            o->timing = true;
-        } else if (!std::strcmp(a, "--quiet")) {
-            o->quiet = true;
-        } else if (takes_value) {
-            if (i + 1 >= argc)
-                return usage_error("%s needs a value", a);
-            int rc = set_option_value(o, a, argv[++i]);
-            if (rc != CONTINUE)
-                return rc;
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return usage_error("unknown option '%s'", a);
-        } else if (!o->scene_path) {
-            o->scene_path = a;
-        } else {
-            return usage_error("more than one scene given ('%s')", a);
+        } else if (const int rc = set_option(o, p)) {
+            return rc;
         }
     }
     if (!o->scene_path)
-        return usage_error("%s", "run: missing SCENE");
+        return cli_usage_error(PROG, "run: missing SCENE");
     return CONTINUE;
 }
 
@@ -814,5 +798,5 @@ int main(int argc, char **argv)
     }
     if (!std::strcmp(argv[1], "run"))
         return cmd_run(argc - 2, argv + 2);
-    return usage_error("unknown command '%s' (run)", argv[1]);
+    return cli_usage_error(PROG, "unknown command '%s' (run)", argv[1]);
 }

@@ -7,7 +7,8 @@
  *   carom lean SCENE      a header of switches and capacities for the
  *                         smallest build that gives the scene's results
  *
- * The commands share one table of options (`options` below); run, profile
+ * The commands share one table of options (`options` below, read by
+ * cli_options.c, the parser build/carom-box2d uses too); run, profile
  * and render share one simulation loop. Exit status: 0 success, 1 the
  * simulation reported an error (the state reached is still written,
  * marked partial), 2 bad usage or a bad scene.
@@ -23,11 +24,12 @@
 #include <unistd.h>
 
 #include "carom.h"
+#include "cli_options.h"
 #include "render/render.h"
 #include "scene.h"
 
 #define EXIT_SIM 1
-#define EXIT_USAGE 2
+#define EXIT_USAGE CLI_EXIT_USAGE
 
 /* Scene files larger than this are refused (as tools/scene.c does). */
 #define SCENE_MAX_BYTES (64L << 20)
@@ -63,15 +65,6 @@ typedef enum opt_id {
     OPT_OUTPUT, OPT_PNG, OPT_FPS, OPT_EVERY, OPT_IMPACTS, OPT_SIZE, OPT_VIEW,
     OPT_MARGIN, OPT_SLACK, OPT_CALIBRATION, OPT_HELP
 } opt_id;
-
-typedef struct cli_option {
-    opt_id id;
-    const char *name;  /* --name */
-    char short_name;   /* -x, or 0 */
-    const char *arg;   /* metavariable, NULL for a flag */
-    unsigned cmds;     /* CMD_* that accept it */
-    const char *help;  /* lines after the first are indented */
-} cli_option;
 
 static const cli_option options[] = {
     {OPT_STEPS, "steps", 0, "N", CMD_ALL,
@@ -145,12 +138,17 @@ typedef struct sim_opts {
     double view[4];     /* xmin, ymin, xmax, ymax */
 } sim_opts;
 
-static const char *cmd_name(unsigned cmd)
+/* A set of commands as the messages name it. */
+static const char *cmds_name(unsigned cmds)
 {
-    return cmd == CMD_RUN       ? "run"
-           : cmd == CMD_PROFILE ? "profile"
-           : cmd == CMD_RENDER  ? "render"
-                                : "lean";
+    switch (cmds) {
+    case CMD_RUN: return "run";
+    case CMD_PROFILE: return "profile";
+    case CMD_RENDER: return "render";
+    case CMD_LEAN: return "lean";
+    case CMD_SIM: return "run, profile and render";
+    default: return "every command";
+    }
 }
 
 static void print_option_help(FILE *f, unsigned cmds)
@@ -237,65 +235,27 @@ static void print_usage(FILE *f)
           "completely), 2 bad usage or bad scene\n", f);
 }
 
-static int usage_error(const char *fmt, ...)
+static int apply_option(sim_opts *o, const cli_parser *p)
 {
-    va_list ap;
-    fputs("carom: ", stderr);
-    va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
-    va_end(ap);
-    fputs("\n(try 'carom --help')\n", stderr);
-    return EXIT_USAGE;
-}
-
-static int parse_long_in(const char *opt, const char *v, long lo, long hi, long *out)
-{
-    char *end;
-    long x;
-    errno = 0;
-    x = strtol(v, &end, 10);
-    if (*v == '\0' || *end != '\0' || errno || x < lo || x > hi)
-        return usage_error("--%s: want an integer in [%ld, %ld], got '%s'", opt,
-                           lo, hi, v);
-    *out = x;
-    return 0;
-}
-
-/* A finite number in (lo, hi] (lo_open) or [lo, hi]. */
-static int parse_double_in(const char *opt, const char *v, double lo, int lo_open,
-                           double hi, const char *want, double *out)
-{
-    char *end;
-    double x;
-    errno = 0;
-    x = strtod(v, &end);
-    if (*v == '\0' || *end != '\0' || errno || !isfinite(x) ||
-        (lo_open ? !(x > lo) : !(x >= lo)) || x > hi)
-        return usage_error("--%s: want %s, got '%s'", opt, want, v);
-    *out = x;
-    return 0;
-}
-
-static int apply_option(sim_opts *o, const cli_option *opt, const char *v)
-{
-    switch (opt->id) {
+    const char *v = p->value;
+    switch ((opt_id)p->opt->id) {
     case OPT_STEPS:
-        return parse_long_in("steps", v, 0, 1000000000L, &o->steps);
+        return cli_long(p, 0, 1000000000L, NULL, &o->steps);
     case OPT_DT:
-        return parse_double_in("dt", v, 0.0, 1, 1.0e30, "a finite number > 0", &o->dt);
+        return cli_double(p, 0.0, CLI_OPEN, 1.0e30, "a finite number > 0", &o->dt);
     case OPT_METHOD: {
         carom_method m;
         if (carom_method_from_name(v, &m) != CAROM_OK)
-            return usage_error("--method: unknown method '%s' (events, discrete, "
-                               "first-impact)", v);
+            return cli_usage_error("carom", "--method: unknown method '%s' (events, "
+                                   "discrete, first-impact)", v);
         o->method = v;
         return 0;
     }
     case OPT_TRACE: o->trace_path = v; return 0;
     case OPT_EVENTS: o->events_path = v; return 0;
     case OPT_MAX_OUTPUT:
-        return parse_double_in("max-output", v, 0.0, 0, 1.0e12,
-                               "a number of megabytes >= 0", &o->max_output_mb);
+        return cli_double(p, 0.0, CLI_CLOSED, 1.0e12, "a number of megabytes >= 0",
+                          &o->max_output_mb);
     case OPT_FORCE: o->force = 1; return 0;
     case OPT_PROGRESS: o->progress = 1; return 0;
     case OPT_NO_PROGRESS: o->progress = 0; return 0;
@@ -305,16 +265,16 @@ static int apply_option(sim_opts *o, const cli_option *opt, const char *v)
     case OPT_OUTPUT: o->output_path = v; return 0;
     case OPT_PNG: o->png_dir = v; return 0;
     case OPT_FPS:
-        return parse_double_in("fps", v, 0.0, 1, MAX_FPS, "a number in (0, 60]", &o->fps);
+        return cli_double(p, 0.0, CLI_OPEN, MAX_FPS, "a number in (0, 60]", &o->fps);
     case OPT_EVERY:
-        return parse_long_in("every", v, 1, 1000000000L, &o->every);
+        return cli_long(p, 1, 1000000000L, NULL, &o->every);
     case OPT_IMPACTS: o->impacts = 1; return 0;
     case OPT_SIZE:
-        return parse_long_in("size", v, 16, 16384, &o->size);
+        return cli_long(p, 16, 16384, NULL, &o->size);
     case OPT_MARGIN:
-        return parse_long_in("margin", v, 0, 1000, &o->margin);
+        return cli_long(p, 0, 1000, NULL, &o->margin);
     case OPT_SLACK:
-        return parse_long_in("slack", v, 0, 1000000, &o->slack);
+        return cli_long(p, 0, 1000000, NULL, &o->slack);
     case OPT_VIEW: {
         char extra;
         if (sscanf(v, "%lf,%lf,%lf,%lf%c", &o->view[0], &o->view[1], &o->view[2],
@@ -322,8 +282,8 @@ static int apply_option(sim_opts *o, const cli_option *opt, const char *v)
             !isfinite(o->view[1]) || !isfinite(o->view[2]) ||
             !isfinite(o->view[3]) || !(o->view[2] > o->view[0]) ||
             !(o->view[3] > o->view[1]))
-            return usage_error("--view: want X0,Y0,X1,Y1 with X0 < X1 and Y0 < Y1 "
-                               "(metres), got '%s'", v);
+            return cli_usage_error("carom", "--view: want X0,Y0,X1,Y1 with X0 < X1 and "
+                                   "Y0 < Y1 (metres), got '%s'", v);
         o->fixed_view = 1;
         return 0;
     }
@@ -333,22 +293,12 @@ static int apply_option(sim_opts *o, const cli_option *opt, const char *v)
     return 0;
 }
 
-static const char *cmds_list(unsigned cmds)
-{
-    switch (cmds) {
-    case CMD_RUN: return "run";
-    case CMD_PROFILE: return "profile";
-    case CMD_RENDER: return "render";
-    case CMD_LEAN: return "lean";
-    case CMD_SIM: return "run, profile and render";
-    default: return "every command";
-    }
-}
-
 /* Returns -1 to go on, or an exit status (0 after --help). */
 static int parse_options(unsigned cmd, int argc, char **argv, sim_opts *o)
 {
-    int i, only_operands = 0;
+    cli_parser p;
+    cli_item item;
+    int rc;
     memset(o, 0, sizeof *o);
     o->cmd = cmd;
     o->steps = -1;
@@ -359,76 +309,33 @@ static int parse_options(unsigned cmd, int argc, char **argv, sim_opts *o)
     o->size = DEFAULT_SIZE;
     o->margin = LEAN_DEFAULT_MARGIN;
     o->slack = LEAN_DEFAULT_SLACK;
-    for (i = 0; i < argc; ++i) {
-        const char *a = argv[i], *value = NULL;
-        const cli_option *opt = NULL;
-        char shown[64];
-        int k, rc;
-        if (only_operands || a[0] != '-' || a[1] == '\0') {
+    cli_start(&p, "carom", options, OPTION_COUNT, cmd, argc, argv);
+    p.cmds_name = cmds_name;
+    while ((item = cli_next(&p)) != CLI_END) {
+        if (item == CLI_ERROR)
+            return EXIT_USAGE;
+        if (item == CLI_OPERAND) {
             if (o->scene_path)
-                return usage_error("more than one scene given ('%s')", a);
-            o->scene_path = a;
-            continue;
-        }
-        if (strcmp(a, "--") == 0) {
-            only_operands = 1;
-            continue;
-        }
-        if (a[1] == '-') {
-            const char *eq = strchr(a + 2, '=');
-            size_t n = eq ? (size_t)(eq - (a + 2)) : strlen(a + 2);
-            for (k = 0; k < OPTION_COUNT; ++k)
-                if (strlen(options[k].name) == n && strncmp(options[k].name, a + 2, n) == 0)
-                    opt = &options[k];
-            if (!opt)
-                return usage_error("unknown option '%.*s'", (int)(n + 2), a);
-            if (eq)
-                value = eq + 1;
-            snprintf(shown, sizeof shown, "--%s", opt->name);
-        } else {
-            for (k = 0; k < OPTION_COUNT; ++k)
-                if (options[k].short_name == a[1])
-                    opt = &options[k];
-            if (!opt)
-                return usage_error("unknown option '%s'", a);
-            if (a[2] != '\0') {
-                if (!opt->arg)
-                    return usage_error("unknown option '%s'", a);
-                value = a[2] == '=' ? a + 3 : a + 2; /* -oFILE, -o=FILE */
-            }
-            snprintf(shown, sizeof shown, "-%c", opt->short_name);
-        }
-        if (!(opt->cmds & cmd))
-            return usage_error("%s is an option of %s, not of %s", shown,
-                               cmds_list(opt->cmds), cmd_name(cmd));
-        if (opt->id == OPT_HELP) {
-            if (value)
-                return usage_error("%s takes no value", shown);
+                return cli_usage_error("carom", "more than one scene given ('%s')", p.value);
+            o->scene_path = p.value;
+        } else if (p.opt->id == OPT_HELP) {
             print_usage(stdout);
             return 0;
-        }
-        if (!opt->arg && value)
-            return usage_error("%s takes no value (got '%s')", shown, a);
-        if (opt->arg && !value) {
-            if (i + 1 >= argc)
-                return usage_error("%s needs a value (%s)", shown, opt->arg);
-            value = argv[++i];
-        }
-        rc = apply_option(o, opt, value);
-        if (rc)
+        } else if ((rc = apply_option(o, &p)) != 0) {
             return rc;
+        }
     }
     if (!o->scene_path)
-        return usage_error("%s: missing SCENE", cmd_name(cmd));
+        return cli_usage_error("carom", "%s: missing SCENE", cmds_name(cmd));
     if (cmd == CMD_RENDER) {
         if (!o->output_path && !o->png_dir)
-            return usage_error("render: say where to draw: -o FILE.svg and/or --png DIR");
+            return cli_usage_error("carom", "render: say where to draw: -o FILE.svg and/or "
+                                   "--png DIR");
         if (o->fps > 0.0 && o->every > 0)
-            return usage_error("render: give --fps or --every, not both");
+            return cli_usage_error("carom", "render: give --fps or --every, not both");
     }
     return -1;
 }
-
 /* ---- reading the scene ---------------------------------------------------- */
 
 /* Read the scene file ourselves (rather than scene_load) so that a
@@ -1485,7 +1392,8 @@ static double seg_dist2(double p0x, double p0y, double p1x, double p1y,
 static double lean_radius(const scene *s, int i, const carom_body_state *st)
 {
     const carom_body_def *d = &s->bodies[i].def;
-    double cx, cy, lx, ly, r = 0.0, c = st->rotation.c, sn = st->rotation.s;
+    double cx, cy, lx, ly, r = 0.0, c = (double)st->rotation.c,
+           sn = (double)st->rotation.s;
     int k;
     if (d->shape == CAROM_SHAPE_CIRCLE)
         return (double)d->radius;
@@ -2076,5 +1984,5 @@ int main(int argc, char **argv)
         return cmd_sim(CMD_RENDER, argc - 2, argv + 2);
     if (strcmp(argv[1], "lean") == 0)
         return cmd_lean(argc - 2, argv + 2);
-    return usage_error("unknown command '%s' (run, profile, render, lean)", argv[1]);
+    return cli_usage_error("carom", "unknown command '%s' (run, profile, render, lean)", argv[1]);
 }
