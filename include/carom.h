@@ -580,6 +580,8 @@ typedef struct carom_stats {
     int max_impacts_used;  /**< most impacts in one step */
     int max_direct_used;   /**< most impulses of an exact island solve
                                 (CAROM_IMPACT_DIRECT_MAX; 0: none tried) */
+    int max_rows_used;     /**< most contact rows of one simultaneous
+                                impact solve (CAROM_IMPACT_ROWS_MAX) */
     int awake_bodies;    /**< bodies simulated in the last step */
     int contacts;        /**< contacts in the last step */
 } carom_stats;

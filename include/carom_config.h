@@ -352,6 +352,18 @@
                                                 earlier once converged */
 #endif
 
+#ifndef CAROM_IMPACT_ROWS_MAX
+#define CAROM_IMPACT_ROWS_MAX 1024 /**< contact rows (pairs) one simultaneous
+                                        impact solve holds, at most; the
+                                        world holds min(this, 4 x the
+                                        island's bodies, max_pairs) rows of
+                                        144 bytes. An instant with more
+                                        impacts takes the rest right after;
+                                        an island grows no further. `carom
+                                        lean` sets it to what the scene
+                                        used (1 at least) */
+#endif
+
 #ifndef CAROM_IMPACT_DIRECT_MAX
 #define CAROM_IMPACT_DIRECT_MAX 24 /**< an impact solve whose sweeps converge
                                         slowly solves its acting rows

@@ -18,9 +18,21 @@
 #ifndef CAROM_ARITH_H
 #define CAROM_ARITH_H
 
+#include <float.h>
 #include <math.h>
 
 #include "carom.h"
+
+/* The results are the same bits on every target only if each float
+ * operation is rounded to float once: no wider intermediates, no fused or
+ * reassociated arithmetic. (-ffp-contract=off cannot be checked here: the
+ * Makefile passes it.) */
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD != 0
+#error "carom needs FLT_EVAL_METHOD == 0 (float arithmetic evaluated in float): on 32-bit x86 build with -msse2 -mfpmath=sse, not the x87 FPU"
+#endif
+#if defined(__FAST_MATH__)
+#error "carom must not be built with -ffast-math (it reorders and contracts float arithmetic; results would differ between targets)"
+#endif
 
 #if defined(__GNUC__)
 #define CR_INLINE static inline __attribute__((always_inline))

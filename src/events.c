@@ -896,6 +896,14 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
     return 1;
 }
 
+/* Row slots 0 .. n-1 of w->rows are written: the most an instant wrote is
+ * what `carom lean` sizes CAROM_IMPACT_ROWS_MAX to. */
+static void cr_note_rows(carom_world *w, int n)
+{
+    if (n > w->stats.max_rows_used)
+        w->stats.max_rows_used = n;
+}
+
 static int cr_island_add_body(carom_world *w, int i, int *n)
 {
     if (!cr_moving(&w->bodies[i]) || w->mark[i] == w->mark_stamp)
@@ -992,6 +1000,7 @@ static int cr_island_grow(carom_world *w, int *nb, int nr, float t)
                     if (cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b)) &&
                         (in || cr_island_add_body(w, other, nb))) {
                         p->mark = w->mark_stamp;
+                        cr_note_rows(w, nr + 1);
                         if (cr_row_make(w, k, &w->rows[nr])) {
                             ++nr;
                             grown = 1;
@@ -1040,6 +1049,7 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         p->mark = w->mark_stamp;
         w->rows[seeds++].pair = e.pair;
     }
+    cr_note_rows(w, seeds);
     /* everyone to the instant, then the rows */
     for (i = 0; i < nb; ++i) {
         cr_sync(&w->bodies[w->island[i]], &w->drift[w->island[i]], t);

@@ -32,6 +32,10 @@
 /* Contact rows per body of a simultaneous impact solve. */
 #define CR_ROWS_PER_ISLAND_BODY 4
 
+#if CAROM_IMPACT_ROWS_MAX < 1
+#error "CAROM_IMPACT_ROWS_MAX must be at least 1 (an impact instant holds its first pair's row)"
+#endif
+
 /* ---- definitions ---------------------------------------------------------- */
 
 carom_world_def carom_default_world_def(void)
@@ -140,6 +144,8 @@ static void cr_caps_of(const carom_world_def *d, cr_caps *c)
     c->rows = CR_ROWS_PER_ISLAND_BODY * c->island < c->pairs
                   ? CR_ROWS_PER_ISLAND_BODY * c->island
                   : c->pairs;
+    if (c->rows > CAROM_IMPACT_ROWS_MAX)
+        c->rows = CAROM_IMPACT_ROWS_MAX;
     /* an impact row has at most three unknowns (two normals, friction) */
     c->direct = 3 * c->rows < CAROM_IMPACT_DIRECT_MAX ? 3 * c->rows : CAROM_IMPACT_DIRECT_MAX;
 #if !CAROM_ENABLE_EVENTS
@@ -362,7 +368,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
         w->bodies[i].flags = 0u;
     }
     {
-        carom_stats z = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        static const carom_stats z = {0};
         w->stats = z;
     }
     *out = w;
@@ -538,6 +544,7 @@ static carom_status cr_find_pairs(carom_world *w)
     return CAROM_OK;
 }
 
+#if CAROM_ENABLE_QUERIES || CAROM_ENABLE_SENSORS
 /* Did the step leave body slot s outside its grid box? An impulse can
  * push a body past the box of its predicted motion (the solver's
  * push-out; an impact beyond a regrown box). The circle of the shape's
@@ -573,6 +580,12 @@ void cr_note_escapes(carom_world *w)
         }
     }
 }
+#else
+void cr_note_escapes(carom_world *w)
+{
+    (void)w; /* only queries and sensors look at escapes */
+}
+#endif
 
 /* Sync the bodies the solver takes this substep to its start. */
 static void cr_sync_active(carom_world *w, float t)

@@ -1894,6 +1894,17 @@ static int cmd_lean(int argc, char **argv)
                    "the scene's polygons have up to %d vertices */\n",
                    CAROM_MAX_POLYGON_VERTICES, n.max_vertices);
     }
+    {
+        int r = n.stats.max_rows_used > 1 ? n.stats.max_rows_used : 1;
+        if (r < CAROM_IMPACT_ROWS_MAX)
+            printf("#define CAROM_IMPACT_ROWS_MAX %d /* limit: a simultaneous impact solve "
+                   "held at most %d contact rows%s */\n", r, n.stats.max_rows_used,
+                   n.stats.max_rows_used > 0 ? "" : " (no impact: 1, the least)");
+        else
+            printf("#define CAROM_IMPACT_ROWS_MAX %d /* limit: as this carom was built; a "
+                   "simultaneous impact solve held %d contact rows */\n",
+                   CAROM_IMPACT_ROWS_MAX, n.stats.max_rows_used);
+    }
 #if CAROM_IMPACT_DIRECT_MAX > 0
     printf("#define CAROM_IMPACT_DIRECT_MAX %d /* limit: the exact solve of an impact island "
            "took at most %d impulses%s */\n", n.stats.max_direct_used, n.stats.max_direct_used,

@@ -7,8 +7,9 @@
 #                                 16 KB RAM: the reduced suite; the whole
 #                                 suite runs its code on mps2-an385) under
 #                                 qemu-system-arm must print the hashes of the
-#                                 x86-64 build; skips when qemu-system-arm or
-#                                 arm-none-eabi-gcc is missing
+#                                 x86-64 build, then embedded-lean8k; skips
+#                                 when qemu-system-arm or arm-none-eabi-gcc is
+#                                 missing
 #   make check-embedded-negative  the M4F firmware built with
 #                                 -ffp-contract=fast (fused multiply-add) must
 #                                 make the same comparison fail
@@ -185,6 +186,7 @@ check-embedded:
 	    $(MAKE) -f $(firstword $(MAKEFILE_LIST)) --no-print-directory embedded && \
 	    QEMU_ARM=$(QEMU_ARM) sh $(EMB_DIR)/check-embedded.sh $(EMB_BUILD) \
 	        $(foreach t,$(EMB_TARGETS),$(t):$(EMB_BOARD_$(t)):$(if $(EMB_SMALL_$(t)),small,full)) && \
+	    $(MAKE) -f $(firstword $(MAKEFILE_LIST)) --no-print-directory embedded-lean8k && \
 	    echo "check-embedded: $$(( $$(date +%s) - start )) s in all"; \
 	else \
 	    echo "check-embedded: skipped: needs $(ARM_CC) and $(QEMU_ARM) (Debian: gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm)"; \
