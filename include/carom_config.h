@@ -254,6 +254,20 @@
                                            it sleeps (as Box2D) */
 #endif
 
+/* Body defaults (carom_default_body_def) */
+#ifndef CAROM_DEFAULT_RADIUS
+#define CAROM_DEFAULT_RADIUS 0.5f /**< m: a circle of unit diameter */
+#endif
+#ifndef CAROM_DEFAULT_DENSITY
+#define CAROM_DEFAULT_DENSITY 1.0f /**< kg/m^2 (2D: mass per area) */
+#endif
+#ifndef CAROM_DEFAULT_FRICTION
+#define CAROM_DEFAULT_FRICTION 0.6f /**< Coulomb coefficient (as Box2D) */
+#endif
+#ifndef CAROM_DEFAULT_RESTITUTION
+#define CAROM_DEFAULT_RESTITUTION 0.0f /**< Newton's coefficient: plastic */
+#endif
+
 /* ---- scale: tolerances derived from a length unit and |a| dt ------------ */
 /*
  * carom has no absolute tolerance in metres or m/s. With the world's

@@ -40,6 +40,9 @@
 #define CR_INLINE static inline
 #endif
 
+/* pi, to float precision (circle areas, angles) */
+#define CR_PI 3.14159265358979323846f
+
 /* ---- counting ---------------------------------------------------------- */
 
 #if CAROM_ENABLE_PROFILE

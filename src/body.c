@@ -9,7 +9,6 @@
  */
 #include "body.h"
 
-#define CR_PI 3.14159265358979323846f
 
 static int cr_vec_finite(cr_v2 v) { return cr_finite(v.x) && cr_finite(v.y); }
 
@@ -156,7 +155,7 @@ carom_body_def carom_default_body_def(void)
     int i;
     d.type = CAROM_BODY_DYNAMIC;
     d.shape = CAROM_SHAPE_CIRCLE;
-    d.radius = 0.5f;
+    d.radius = CAROM_DEFAULT_RADIUS;
     d.vertex_count = 0;
     for (i = 0; i < CAROM_MAX_POLYGON_VERTICES; ++i)
         d.vertices[i] = cr_v(0.0f, 0.0f);
@@ -164,10 +163,10 @@ carom_body_def carom_default_body_def(void)
     d.rotation = cr_rot_identity();
     d.velocity = cr_v(0.0f, 0.0f);
     d.angular_velocity = 0.0f;
-    d.density = 1.0f;
+    d.density = CAROM_DEFAULT_DENSITY;
     d.mass = 0.0f;
-    d.restitution = 0.0f;
-    d.friction = 0.6f;
+    d.restitution = CAROM_DEFAULT_RESTITUTION;
+    d.friction = CAROM_DEFAULT_FRICTION;
     d.force = cr_v(0.0f, 0.0f);
     d.torque = 0.0f;
     d.category_bits = 1u;

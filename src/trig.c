@@ -14,7 +14,6 @@
 #define CR_PIO2_2 4.837512969970703125e-4f
 #define CR_PIO2_3 7.549790126404332e-8f
 #define CR_TWO_OVER_PI 0.636619772367581343f
-#define CR_PI 3.14159265358979323846f
 #define CR_PIO4 0.785398163397448309616f
 
 /* Largest |angle| reduced exactly (quadrant count below 2^12). Larger
