@@ -55,6 +55,8 @@ carom_status carom_world_add_body(carom_world *w, const carom_body_def *def,
     if (slot == w->slot_count)
         ++w->slot_count;
     ++w->body_count;
+    if (b.flags & CR_BODY_SENSOR)
+        ++w->sensor_count;
     w->prime = 1;
     w->grid_valid = 0;
     if (id)
@@ -116,6 +118,8 @@ carom_status carom_world_remove_body(carom_world *w, int id)
     cr_wake_neighbours(w, s);
     cr_forget_body(w, s);
     cr_touch_forget(w, s);
+    if (w->bodies[s].flags & CR_BODY_SENSOR)
+        --w->sensor_count;
     w->bodies[s].flags = 0u;
     w->info[s].generation = (w->info[s].generation + 1u) &
                             ((1u << (31 - CAROM_ID_INDEX_BITS)) - 1u);

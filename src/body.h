@@ -22,6 +22,9 @@
 #define CR_BODY_ESCAPED 64u /* ended the last step outside its grid box
                                (pushed by an impulse past its swept box):
                                queries and sensors test its pose directly */
+#define CR_BODY_REGROWN 128u /* its box grew during this step (an impact):
+                                the grid filed it by its first box, so it
+                                counts as escaped (queries, sensors) */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

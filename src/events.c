@@ -407,6 +407,9 @@ static carom_status cr_regrow(carom_world *w, int i, float t)
     if (cr_le(box->lo_x, now.lo_x) && cr_ge(box->hi_x, now.hi_x) &&
         cr_le(box->lo_y, now.lo_y) && cr_ge(box->hi_y, now.hi_y))
         return CAROM_OK;
+#if CAROM_ENABLE_QUERIES || CAROM_ENABLE_SENSORS
+    w->bodies[i].flags |= CR_BODY_REGROWN;
+#endif
     box->lo_x = cr_min(box->lo_x, now.lo_x);
     box->lo_y = cr_min(box->lo_y, now.lo_y);
     box->hi_x = cr_max(box->hi_x, now.hi_x);

@@ -162,7 +162,7 @@ void cr_touch_update(carom_world *w)
         ++n;
     }
 #if CAROM_ENABLE_SENSORS
-    if (w->escaped_count > 0 && w->grid_valid)
+    if (w->escaped_count > 0 && w->sensor_count > 0 && w->grid_valid)
         n = cr_escaped_overlaps(w, n);
 #endif
     /* what nothing could change keeps touching */

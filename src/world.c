@@ -352,6 +352,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->def.max_touch_events = c.touch_events;
     w->grid_valid = 0;
     w->escaped_count = 0;
+    w->sensor_count = 0;
     w->active = CR_AT(active, int);
     w->active_count = 0;
 #undef CR_AT
@@ -565,19 +566,36 @@ static int cr_escaped(const carom_world *w, int s)
            cr_gt(e.hi_y, g->hi_y);
 }
 
+/* Body slot s, in a pair that touched or met this step: list it if the
+ * step left it outside its grid box. */
+static void cr_note_escape(carom_world *w, int s)
+{
+    cr_body *b = &w->bodies[s];
+    if ((b->flags & CR_BODY_ESCAPED) || b->type == CAROM_BODY_STATIC)
+        return;
+    if ((b->flags & CR_BODY_REGROWN) || cr_escaped(w, s)) {
+        b->flags = (unsigned short)((b->flags | CR_BODY_ESCAPED) & ~CR_BODY_REGROWN);
+        w->regrown[w->escaped_count++] = s;
+    }
+}
+
+/* Only an impulse moves a body off the path its grid box was swept
+ * along (forces are constant over the step, a kinematic body keeps its
+ * velocity), and impulses act through the pairs that touched or met:
+ * their bodies are the only ones to check. */
 void cr_note_escapes(carom_world *w)
 {
-    int i;
+    int k;
     /* nothing moved (then the grid is older, its escapes still listed), or
      * the program moved bodies since the grid was built */
     if (w->awake_count == 0 || !w->grid_valid)
         return;
-    for (i = 0; i < w->awake_count; ++i) {
-        int s = w->awake[i];
-        if (cr_escaped(w, s)) {
-            w->bodies[s].flags |= CR_BODY_ESCAPED;
-            w->regrown[w->escaped_count++] = s;
-        }
+    for (k = 0; k < w->pair_count; ++k) {
+        const cr_pair *p = &w->pairs[k];
+        if (p->contact < 0 && !p->met)
+            continue;
+        cr_note_escape(w, p->a);
+        cr_note_escape(w, p->b);
     }
 }
 #else
@@ -814,7 +832,7 @@ carom_status carom_world_step(carom_world *w)
         int err = w->error_body;
         for (i = 0; i < w->slot_count; ++i) {
             w->bodies[i] = w->backup[i];
-            w->bodies[i].flags &= (unsigned short)~CR_BODY_ESCAPED;
+            w->bodies[i].flags &= (unsigned short)~(CR_BODY_ESCAPED | CR_BODY_REGROWN);
         }
         if (w->escaped_count > 0) {
             w->escaped_count = 0; /* (the grid was not rebuilt) */

@@ -158,6 +158,7 @@ struct carom_world {
      * CR_BODY_ESCAPED */
     int grid_valid;
     int escaped_count;
+    int sensor_count;         /* sensor bodies in the world */
 
     carom_profile *profile;   /* attached counters, or NULL */
 };
