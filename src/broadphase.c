@@ -148,7 +148,7 @@ static void cr_emit(cr_pair_out *o, int a, int b)
 
 /* Pairs of item i (its box kept in the proxy: the loop reads one array)
  * with the items of cell (cx, cy). */
-static void cr_cell_pairs(const cr_broadphase *bp, int i, int cx, int cy, cr_pair_out *o)
+CR_INLINE void cr_cell_pairs(const cr_broadphase *bp, int i, int cx, int cy, cr_pair_out *o)
 {
     const cr_proxy *p = &bp->proxies[i];
     int k = cr_bucket(bp, cx, cy), j;
