@@ -695,11 +695,12 @@ static int cr_support_of(const carom_world *w, const cr_pair *p, int u, cr_v2 up
 }
 
 /* The position sweep lifts a body out of its support alone only when it
- * is at least this many times heavier than the support: there the shared
- * correction would press the light body down by most of the overlap. At
- * smaller ratios the shared correction is right, and lifting one side
- * alone makes a deep random pile creep without end (a pile of 3000
- * circles and boxes, 1.27 : 1, sank 6 cm in 25 s and never slept). */
+ * is at least this many times heavier than the support (and rests on it
+ * face on face): there the shared correction would press the light body
+ * down by most of the overlap. At smaller ratios the shared correction is
+ * right, and lifting one side alone makes a deep random pile creep (a
+ * pile of 3000 circles and boxes, 1.27 : 1, sank 6 cm in 20 s with a
+ * thousand bodies or more moving; docs/physics.md). */
 #define CR_SHOCK_MASS_RATIO 2.0f
 
 static int cr_heavy_on(const carom_world *w, int upper, int lower)
@@ -857,7 +858,6 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
             int next = p->a == u ? p->next_a : p->next_b;
             if (cr_support_of(w, p, u, up) &&
                 (w->contacts[p->contact].flags & CR_CONTACT_SOLVE) &&
-                cr_heavy_on(w, u, p->a == u ? p->b : p->a) &&
                 cr_gt(cr_lift(&w->contacts[p->contact], p->a == u ? p->b : p->a, up),
                       CR_SHOCK_COS)) {
                 const cr_contact *c = &w->contacts[p->contact];

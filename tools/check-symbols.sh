@@ -2,7 +2,8 @@
 # check-symbols.sh LIB.a [PROFILE_LIB.a] -- the core library may reference
 # no allocator and no libm function but sqrtf: takes the symbols the
 # archive's members need but no member defines, and fails on anything
-# outside the allow-list. The default build must contain no op counter
+# outside the allow-list; every symbol it defines is carom_* or cr_*. The
+# default build must contain no op counter
 # (profiling compiled out costs nothing); the profiling build must.
 #
 # The nm that reads the archive is chosen from its contents, not its name:
@@ -62,6 +63,15 @@ if [ -n "$bad" ]; then
     exit 1
 fi
 echo "check-symbols: ok: $lib needs only: $(printf "%s" "$undef" | tr "\n" " ")"
+# Every symbol the archive defines for the linker is carom's: the public
+# carom_* API or the internal cr_* functions one module calls in another
+# (C has no module scope; the prefix keeps them out of the program's way).
+foreign=$(grep -Ev '^(carom_|cr_|carom__)' "$tmp/defined" || true)
+if [ -n "$foreign" ]; then
+    echo "check-symbols: FAIL: $lib defines symbols outside carom_* and cr_*: $(printf "%s" "$foreign" | tr "\n" " ")" >&2
+    exit 1
+fi
+echo "check-symbols: ok: $lib defines $(grep -c '^carom_' "$tmp/defined") carom_* and $(grep -c '^cr_' "$tmp/defined") internal cr_* symbols, nothing else"
 if $nm "$lib" | grep -q 'carom__op_row'; then
     echo "check-symbols: FAIL: $lib contains the op counter (carom__op_row): the default build must not count" >&2
     exit 1
