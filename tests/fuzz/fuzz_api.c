@@ -1310,26 +1310,36 @@ static void fz_op_set_transform(fz_state *S, fz_reader *r)
     fz_after_call(S, &before, sa, sb, what, 0);
 }
 
+/* The arguments of an impulse or a one-step force: a scalar (angular
+ * impulse, torque) or a vector at a point (`label` names it in messages). */
+static void fz_read_push(fz_state *S, fz_reader *r, int j, int scalar, const char *what,
+                         const char *label, int id, carom_vec2 *v, carom_vec2 *p,
+                         float *s)
+{
+    v->x = v->y = p->x = p->y = 0.0f;
+    *s = 0.0f;
+    if (scalar) {
+        *s = fz_float(r);
+        fz_set_where("%s(id %d, %g)", what, id, (double)*s);
+    } else {
+        v->x = fz_float(r);
+        v->y = fz_float(r);
+        *p = fz_read_point(S, r, j);
+        fz_set_where("%s(id %d, %s %g %g at %.9g %.9g)", what, id, label, (double)v->x,
+                     (double)v->y, (double)p->x, (double)p->y);
+    }
+}
+
 static void fz_op_impulse(fz_state *S, fz_reader *r, int angular)
 {
     int id = fz_pick_id(S, r), j = fz_index_of(S, id);
     const char *what = angular ? "carom_body_apply_angular_impulse"
                                : "carom_body_apply_impulse";
     carom_vec2 J, p;
-    float L = 0.0f;
+    float L;
     carom_status sa, sb;
     fz_snap before, after;
-    J.x = J.y = p.x = p.y = 0.0f;
-    if (angular) {
-        L = fz_float(r);
-        fz_set_where("%s(id %d, %g)", what, id, (double)L);
-    } else {
-        J.x = fz_float(r);
-        J.y = fz_float(r);
-        p = fz_read_point(S, r, j);
-        fz_set_where("%s(id %d, impulse %g %g at %.9g %.9g)", what, id,
-                     (double)J.x, (double)J.y, (double)p.x, (double)p.y);
-    }
+    fz_read_push(S, r, j, angular, what, "impulse", id, &J, &p, &L);
     fz_snap_take(S->W[FZ_A].w, S->ids, S->n, &before);
     if (angular)
         FZ_CALL3(S, sa, sb, carom_body_apply_angular_impulse(w_, id, L));
@@ -1392,20 +1402,10 @@ static void fz_op_once(fz_state *S, fz_reader *r, int torque_only)
     const char *what = torque_only ? "carom_body_apply_torque"
                                    : "carom_body_apply_force";
     carom_vec2 F, p;
-    float T = 0.0f;
+    float T;
     carom_status sa, sb;
     fz_snap before, after;
-    F.x = F.y = p.x = p.y = 0.0f;
-    if (torque_only) {
-        T = fz_float(r);
-        fz_set_where("%s(id %d, %g)", what, id, (double)T);
-    } else {
-        F.x = fz_float(r);
-        F.y = fz_float(r);
-        p = fz_read_point(S, r, j);
-        fz_set_where("%s(id %d, force %g %g at %.9g %.9g)", what, id,
-                     (double)F.x, (double)F.y, (double)p.x, (double)p.y);
-    }
+    fz_read_push(S, r, j, torque_only, what, "force", id, &F, &p, &T);
     fz_snap_take(S->W[FZ_A].w, S->ids, S->n, &before);
     if (torque_only)
         FZ_CALL3(S, sa, sb, carom_body_apply_torque(w_, id, T));
