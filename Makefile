@@ -222,7 +222,7 @@ help:
 	@echo "  make check-symbols   the archives call no allocator and no libm function but sqrtf"
 	@echo "  make check-switches  every switch of include/carom_config.h builds and removes code"
 	@echo "  make check-cross     the core builds for a Cortex-M4F (skipped without arm-none-eabi-gcc)"
-	@echo "  make check-embedded  the scene suite under qemu on Cortex-M4F, M3 and M0 must match the x86-64 hashes"
+	@echo "  make check-embedded  the scene suite under qemu on Cortex-M4F, M3 and M0 must match the x86-64 hashes; then embedded-lean8k"
 	@echo "  make check-embedded-negative  the M4F firmware with fused multiply-add must fail that comparison"
 	@echo "  make validate-check  carom against Box2D within tolerance; report and figure under $(BUILD)/"
 	@echo "  make stress-check    the stress checker's self-test, then the fast stress scenes (a few seconds)"
