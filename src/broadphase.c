@@ -1,7 +1,8 @@
 /*
  * broadphase.c -- candidate pairs from a uniform grid, rebuilt each step.
  *
- * The cell is twice the mean box size of the bodies; a body whose box fits
+ * The cell is twice the mean box size of the bodies (leaving out boxes
+ * more than CR_BIG_FACTOR times the mean: walls); a body whose box fits
  * in a cell is filed under the cell of its box centre, so two such boxes
  * that overlap have centres in the same or adjacent cells: each cell is
  * compared with itself and its four "forward" neighbours (right, and the
@@ -22,6 +23,10 @@
 /* Cell coordinates are clamped here, so a huge coordinate over a tiny cell
  * cannot overflow an int (clamped cells only cost extra candidates). */
 #define CR_CELL_LIMIT 1.0e9f
+/* Boxes larger than this many times the mean box do not set the cell. */
+#ifndef CR_BIG_FACTOR
+#define CR_BIG_FACTOR 4.0f
+#endif
 
 int cr_boxes_overlap(const cr_box *p, const cr_box *q)
 {
@@ -61,15 +66,34 @@ static int cr_bucket(const cr_broadphase *bp, int cx, int cy)
 void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
                          const int *bodies, int n)
 {
-    int i, grid = 0, big = 0;
+    int i, grid = 0, big = 0, n_mean = n;
     float sum = 0.0f, cell;
 
-    /* the cell: twice the mean box size (largest side) */
+    /* the cell: twice the mean box size (largest side) of the bodies
+     * that are not big: a mean over all, then over those within
+     * CR_BIG_FACTOR of it, so a few walls do not coarsen the grid of
+     * many small bodies */
     for (i = 0; i < n; ++i) {
         const cr_box *b = &boxes[bodies[i]];
         sum = cr_add(sum, cr_max(cr_sub(b->hi_x, b->lo_x), cr_sub(b->hi_y, b->lo_y)));
     }
-    cell = n > 0 ? cr_mul(2.0f, cr_div(sum, (float)n)) : 1.0f;
+    if (n > 0) {
+        float limit = cr_mul(CR_BIG_FACTOR, cr_div(sum, (float)n)), small = 0.0f;
+        int count = 0;
+        for (i = 0; i < n; ++i) {
+            const cr_box *b = &boxes[bodies[i]];
+            float size = cr_max(cr_sub(b->hi_x, b->lo_x), cr_sub(b->hi_y, b->lo_y));
+            if (!cr_gt(size, limit)) {
+                small = cr_add(small, size);
+                ++count;
+            }
+        }
+        if (count > 0)
+            sum = small, n_mean = count;
+        else
+            n_mean = n;
+    }
+    cell = n > 0 ? cr_mul(2.0f, cr_div(sum, (float)n_mean)) : 1.0f;
     if (!cr_gt(cell, 0.0f) || !cr_finite(cell))
         cell = 1.0f;
     bp->cell = cell;

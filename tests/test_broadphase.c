@@ -120,6 +120,38 @@ START_TEST(test_grid_finds_pairs_of_walls_larger_than_a_cell)
 }
 END_TEST
 
+/* Four walls 100 times the size of 20 small boxes: the walls are not
+ * what a cell is sized for. The mean of all sizes is (20 * 0.1 + 4 * 10)
+ * / 24 = 1.75; only the small boxes are within 4 times it, so the cell is
+ * twice their size, 0.2 (with the walls counted it would be 3.5, and every
+ * body would be compared with most of the others). */
+START_TEST(test_walls_do_not_set_the_cell)
+{
+    static bp_fixture f;
+    int n = 24, i;
+    fixture_init(&f, n);
+    for (i = 0; i < 20; ++i) {
+        f.boxes[i].lo_x = -4.0f + 0.35f * (float)i;
+        f.boxes[i].hi_x = f.boxes[i].lo_x + 0.1f;
+        f.boxes[i].lo_y = (i % 2) ? 0.05f : 0.0f; /* neighbours never touch */
+        f.boxes[i].hi_y = f.boxes[i].lo_y + 0.1f;
+        f.is_static[i] = 0;
+    }
+    for (i = 20; i < 24; ++i) {
+        int side = i - 20;
+        f.boxes[i].lo_x = side == 0 ? -5.3f : side == 1 ? 5.0f : -5.0f;
+        f.boxes[i].hi_x = side == 0 ? -5.0f : side == 1 ? 5.3f : 5.0f;
+        f.boxes[i].lo_y = side == 2 ? -5.3f : side == 3 ? 5.0f : -5.0f;
+        f.boxes[i].hi_y = side == 2 ? -5.0f : side == 3 ? 5.3f : 5.0f;
+        f.is_static[i] = 1;
+    }
+    check_against_all_pairs(&f, n);
+    ck_assert_float_eq_tol(f.bp.cell, 0.2f, 1e-5f);
+    ck_assert_int_eq(f.bp.grid_count, 20);
+    ck_assert_int_eq(f.bp.big_count, 4);
+}
+END_TEST
+
 START_TEST(test_grid_handles_huge_and_negative_coordinates)
 {
     static bp_fixture f;
@@ -321,6 +353,7 @@ Suite *suite_broadphase(void)
     TCase *tc = tcase_create("grid");
     tcase_add_test(tc, test_grid_equals_all_pairs_for_mixed_sizes);
     tcase_add_test(tc, test_grid_finds_pairs_of_walls_larger_than_a_cell);
+    tcase_add_test(tc, test_walls_do_not_set_the_cell);
     tcase_add_test(tc, test_grid_handles_huge_and_negative_coordinates);
     tcase_add_test(tc, test_pair_overflow_is_counted_not_written);
     tcase_add_test(tc, test_world_pair_capacity_is_a_clean_failure);
