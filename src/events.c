@@ -54,6 +54,12 @@
 /* Sweeps that keep an island's touching contacts from closing in for the
  * rest of the substep (cr_hold_contacts). */
 #define CR_HOLD_SWEEPS 8
+/* Sweeps of the solve after each ring of rows joins a growing island
+ * (cr_island_grow): it only has to show which contacts the new rows push;
+ * the island is solved to convergence once, when it stops growing. A
+ * full solve per ring made an impact into a deep pile cost one converged
+ * solve per ring of bodies (1.7x the time of a 10^4-body pile). */
+#define CR_GROW_SWEEPS 16
 /* An island solve still moving after this many sweeps (and every 16
  * more) tries the exact solve of its acting rows (cr_rows_direct); a
  * pivot below this fraction of the largest diagonal entry means
@@ -981,8 +987,17 @@ static void cr_hold_contacts(carom_world *w, int nb, int nr, float t, float t_en
  */
 static int cr_island_grow(carom_world *w, int *nb, int nr, float t)
 {
-    int grown = 1, i, k;
-    while (grown) {
+    int grown = 1, converged = 1, i, k; /* the caller solved the seeds */
+    for (;;) {
+        if (!grown) {
+            /* nothing joined after a rough solve: solve to convergence,
+             * then look once more (a converged solve can push a contact
+             * the rough one did not) */
+            if (converged)
+                break;
+            cr_rows_solve(w, w->rows, nr, CAROM_IMPACT_ISLAND_ITERATIONS);
+            converged = 1;
+        }
         grown = 0;
         for (i = 0; i < *nb; ++i) {
             int body = w->island[i];
@@ -1013,8 +1028,12 @@ static int cr_island_grow(carom_world *w, int *nb, int nr, float t)
                 k = next;
             }
         }
-        if (grown)
-            cr_rows_solve(w, w->rows, nr, CAROM_IMPACT_ISLAND_ITERATIONS);
+        if (grown) {
+            /* rows joined: a rough solve is enough to show which of their
+             * neighbours they push; the converged solve comes last */
+            cr_rows_solve(w, w->rows, nr, CR_GROW_SWEEPS);
+            converged = 0;
+        }
     }
     return nr;
 }
