@@ -87,6 +87,17 @@
                                      passes do nothing */
 #endif
 
+#ifndef CAROM_ENABLE_GRID
+#define CAROM_ENABLE_GRID 1 /**< the uniform grid of the broadphase: pairs
+                                 and queries in time linear in the bodies;
+                                 off: every box is tested against every
+                                 other (n^2 / 2 tests, the same pairs in
+                                 the same order), about 4 KB less code and
+                                 no grid arrays: for worlds of a few dozen
+                                 bodies (`carom lean` turns it off up to
+                                 64) */
+#endif
+
 #ifndef CAROM_ENABLE_STATUS_NAMES
 #define CAROM_ENABLE_STATUS_NAMES 1 /**< carom_status_string() names every
                                          status; off: one generic string

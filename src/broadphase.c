@@ -17,6 +17,10 @@
  * of pairs by (a, b) is two counting passes over body slots, also linear.
  * Everything is deterministic: the same boxes give the same pairs in the
  * same order.
+ *
+ * With CAROM_ENABLE_GRID off every box is tested against every other
+ * instead: the same pairs, in the same (a, b) order, with less code and
+ * no grid arrays, for small worlds.
  */
 #include "broadphase.h"
 
@@ -33,6 +37,39 @@ int cr_boxes_overlap(const cr_box *p, const cr_box *q)
     return !(cr_lt(q->hi_x, p->lo_x) || cr_lt(p->hi_x, q->lo_x) ||
              cr_lt(q->hi_y, p->lo_y) || cr_lt(p->hi_y, q->lo_y));
 }
+
+typedef struct cr_pair_out {
+    cr_pair *out;
+    int cap;
+    long found;
+    cr_pair_accept_fn accept;
+    void *ctx;
+} cr_pair_out;
+
+/* Pair (a, b), whose boxes overlap, if the filter accepts it. */
+static void cr_emit(cr_pair_out *o, int a, int b)
+{
+    cr_pair *p;
+    /* past the capacity the count stops at cap + 1: it cannot overflow,
+     * whatever the number of overlapping bodies */
+    if (o->found > (long)o->cap || a == b || !o->accept(o->ctx, a, b))
+        return;
+    if (o->found++ >= (long)o->cap)
+        return;
+    p = &o->out[o->found - 1];
+    p->a = a < b ? a : b;
+    p->b = a < b ? b : a;
+    p->contact = -1;
+    p->next_a = p->next_b = -1;
+    p->stamp = 0;
+    p->va = p->vb = -1;
+    p->mark = 0;
+    p->met = 0;
+    p->solved = 0;
+    p->toi = 0.0f;
+}
+
+#if CAROM_ENABLE_GRID
 
 int cr_broadphase_bucket_cap(int capacity)
 {
@@ -137,37 +174,6 @@ void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
         bp->proxies[grid + i] = bp->proxies[n - 1 - i];
         bp->proxies[n - 1 - i] = t;
     }
-}
-
-typedef struct cr_pair_out {
-    cr_pair *out;
-    int cap;
-    long found;
-    cr_pair_accept_fn accept;
-    void *ctx;
-} cr_pair_out;
-
-/* Pair (a, b), whose boxes overlap, if the filter accepts it. */
-static void cr_emit(cr_pair_out *o, int a, int b)
-{
-    cr_pair *p;
-    /* past the capacity the count stops at cap + 1: it cannot overflow,
-     * whatever the number of overlapping bodies */
-    if (o->found > (long)o->cap || a == b || !o->accept(o->ctx, a, b))
-        return;
-    if (o->found++ >= (long)o->cap)
-        return;
-    p = &o->out[o->found - 1];
-    p->a = a < b ? a : b;
-    p->b = a < b ? b : a;
-    p->contact = -1;
-    p->next_a = p->next_b = -1;
-    p->stamp = 0;
-    p->va = p->vb = -1;
-    p->mark = 0;
-    p->met = 0;
-    p->solved = 0;
-    p->toi = 0.0f;
 }
 
 /* Pairs of item i (its box kept in the proxy: the loop reads one array)
@@ -275,6 +281,63 @@ int cr_broadphase_query(const cr_broadphase *bp, const cr_box *boxes,
     return 1;
 }
 
+
+#else /* !CAROM_ENABLE_GRID: every box against every other */
+
+int cr_broadphase_bucket_cap(int capacity)
+{
+    (void)capacity;
+    return 0;
+}
+
+void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
+                         const int *bodies, int n)
+{
+    int i;
+    for (i = 0; i < n; ++i) {
+        bp->proxies[i].box = boxes[bodies[i]];
+        bp->proxies[i].body = bodies[i];
+        bp->proxies[i].cx = bp->proxies[i].cy = 0;
+    }
+    bp->grid_count = n;
+    bp->big_count = 0;
+}
+
+/* Bodies come in increasing slots, so the pairs come sorted by (a, b):
+ * the order the grid's pairs have after cr_pairs_sort. */
+long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
+                         cr_pair_accept_fn accept, void *ctx, cr_pair *out,
+                         int cap)
+{
+    cr_pair_out o;
+    int i, j;
+    (void)boxes;
+    o.out = out;
+    o.cap = cap;
+    o.found = 0;
+    o.accept = accept;
+    o.ctx = ctx;
+    for (i = 0; i < bp->grid_count; ++i)
+        for (j = i + 1; j < bp->grid_count; ++j)
+            if (cr_boxes_overlap(&bp->proxies[i].box, &bp->proxies[j].box))
+                cr_emit(&o, bp->proxies[i].body, bp->proxies[j].body);
+    return o.found;
+}
+
+int cr_broadphase_query(const cr_broadphase *bp, const cr_box *boxes,
+                        const cr_box *q, cr_query_fn fn, void *ctx)
+{
+    int i;
+    for (i = 0; i < bp->grid_count; ++i)
+        if (cr_boxes_overlap(q, &boxes[bp->proxies[i].body]) &&
+            !fn(ctx, bp->proxies[i].body))
+            return 0;
+    return 1;
+}
+
+#endif /* CAROM_ENABLE_GRID */
+
+#if CAROM_ENABLE_GRID
 void cr_pairs_sort(cr_pair *pairs, cr_pair *tmp, int n, int *count, int slots)
 {
     int i;
@@ -296,3 +359,4 @@ void cr_pairs_sort(cr_pair *pairs, cr_pair *tmp, int n, int *count, int slots)
     for (i = 0; i < n; ++i)
         pairs[count[tmp[i].a]++] = tmp[i];
 }
+#endif

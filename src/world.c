@@ -205,7 +205,7 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     CR_PLACE(regrown, c->bodies, int);
     CR_PLACE(pair_head, c->bodies, int);
     CR_PLACE(proxies, c->bodies, cr_proxy);
-    CR_PLACE(ptmp, c->bodies, cr_proxy);
+    CR_PLACE(ptmp, CAROM_ENABLE_GRID ? c->bodies : 0, cr_proxy);
     CR_PLACE(start, c->buckets + 1, int);
     CR_PLACE(count, c->bodies + 1, int);
     CR_PLACE(pairs, c->pairs, cr_pair);
@@ -540,7 +540,9 @@ static carom_status cr_find_pairs(carom_world *w)
     }
     w->pair_count = (int)found;
     w->grid_valid = 1;
+#if CAROM_ENABLE_GRID
     cr_pairs_sort(w->pairs, w->pair_tmp, w->pair_count, w->bp.count, w->slot_count);
+#endif /* without the grid the pairs come sorted */
     cr_pairs_link(w);
     return CAROM_OK;
 }

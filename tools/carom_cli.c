@@ -1672,6 +1672,10 @@ static void lean_body_ref(char *buf, size_t len, const scene *s, int i)
     snprintf(buf, len, "body %d (line %d)", i, s->bodies[i].line);
 }
 
+/* Up to this many bodies a lean build tests every pair of boxes instead of
+ * keeping the broadphase grid (n^2 / 2 box tests: 2016 at 64 bodies). */
+#define LEAN_GRID_MAX_BODIES 64
+
 static int cmd_lean(int argc, char **argv)
 {
     sim_opts o;
@@ -1870,6 +1874,14 @@ static int cmd_lean(int argc, char **argv)
         lean_switch("STACKING", 1, "gravity (%g, %g): stacks need the support order and shock "
                                    "propagation", (double)s.world.gravity.x,
                     (double)s.world.gravity.y);
+    if (s.body_count <= LEAN_GRID_MAX_BODIES)
+        lean_switch("GRID", 0, "%d bodies: testing every box against every other (%ld tests a "
+                               "step) is small; the grid pays from about %d bodies",
+                    s.body_count, (long)s.body_count * (s.body_count - 1) / 2,
+                    LEAN_GRID_MAX_BODIES);
+    else
+        lean_switch("GRID", 1, "%d bodies: the grid finds pairs in time linear in the bodies",
+                    s.body_count);
     lean_switch("STATUS_NAMES", 0, "status names are for messages; turn on if the program "
                                    "prints carom_status_string()");
 #ifdef CAROM_ENABLE_QUERIES

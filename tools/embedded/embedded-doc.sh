@@ -171,7 +171,6 @@ quartic="cr_first_root4 cr_poly4"
 toi_pp="cr_toi_vertices_edges"
 wake="cr_island_wake_touched cr_island_wake"
 profile_api="carom_op_weights_preset cr_presets carom_op_name carom_phase_name cr_op_names cr_phase_names carom_profile_cost carom_profile_reset"
-grid="cr_broadphase_build cr_broadphase_pairs cr_broadphase_query cr_emit cr_cell_pairs cr_pairs_sort"
 block="cr_lcp2"
 trig="carom_rot_from_angle carom_rot_angle cr_atan_unit"
 # code_list "NAME ...": `NAME`, `NAME` ... for the document
@@ -314,9 +313,13 @@ rotation, no friction, zero gravity, events method), largest first:
 | --- | --- |
 $(fn_table "$cradle_lib")
 
-Finer switches that the code allows, with the bytes of the symbols each
-would remove from these two lean builds (nm of the M4F archives above;
-inlined helpers are counted in their callers, so these are lower bounds):
+Finer switches, with the bytes of the symbols each removes (or would
+remove) from these two lean builds (nm of the M4F archives above; inlined
+helpers are counted in their callers, so these are lower bounds).
+\`CAROM_ENABLE_STACKING\`, \`CAROM_ENABLE_STATUS_NAMES\` and
+\`CAROM_ENABLE_GRID\` (every pair of boxes tested instead of the grid;
+\`carom lean\` turns it off up to 64 bodies) exist, and the lean builds above
+already leave out what they can; the other rows are proposals:
 
 | proposed switch | what it removes | when \`carom lean\` may turn it off | cradle | gas |
 | --- | --- | --- | --- | --- |
@@ -326,7 +329,6 @@ inlined helpers are counted in their callers, so these are lower bounds):
 | (a fix) polygon-polygon TOI under \`CAROM_ENABLE_POLYGON_POLYGON\` | \`cr_toi_vertices_edges\` | with POLYGON_POLYGON | $(fn_sum "$cradle_lib" "$toi_pp") | $(fn_sum "$gas_lib" "$toi_pp") |
 | (a fix) waking under \`CAROM_ENABLE_SLEEP\` | \`cr_island_wake_touched\`, \`cr_island_wake\` | with SLEEP | $(fn_sum "$cradle_lib" "$wake") | $(fn_sum "$gas_lib" "$wake") |
 | weights and names only with \`CAROM_ENABLE_PROFILE\` | $(code_list "$profile_api") | always in a lean build | $(fn_sum "$cradle_lib" "$profile_api") | $(fn_sum "$gas_lib" "$profile_api") |
-| \`CAROM_ENABLE_GRID\` (all pairs instead of the grid, for a few dozen bodies) | $(code_list "$grid") (an all-pairs loop of a few hundred bytes replaces them) | up to ~32 bodies | $(fn_sum "$cradle_lib" "$grid") | $(fn_sum "$gas_lib" "$grid") |
 | two-point block solve only with polygons | \`cr_lcp2\` (and its callers' block branches) | circles only: one point per contact | $(fn_sum "$cradle_lib" "$block") | $(fn_sum "$gas_lib" "$block") |
 | statics only as boxes (\`CAROM_ENABLE_GENERAL_POLYGONS\`) | the convexity and self-intersection checks and the polygon mass of \`cr_body_build\` (inlined: $(fn_sum "$gas_lib" cr_body_build) bytes in gas, $(fn_sum "$cradle_lib" cr_body_build) without polygons) | every polygon a box, none dynamic | - | ~$(($(fn_sum "$gas_lib" cr_body_build) - $(fn_sum "$cradle_lib" cr_body_build))) |
 | trigonometry helpers | \`carom_rot_from_angle\`, \`carom_rot_angle\` (trig.o; only the program calls them when rotation is off) | rotation off; or link with \`-ffunction-sections -Wl,--gc-sections\` | $(fn_sum "$cradle_lib" "$trig") | $(fn_sum "$gas_lib" "$trig") |
