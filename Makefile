@@ -65,7 +65,7 @@ include mk/docs.mk
 include mk/quality.mk
 HAVE_BOX2D := $(shell pkg-config --exists box2d 2>/dev/null && echo yes)
 
-.PHONY: check-cross all lib cli check unit cli-test readme-test check-symbols check-switches run clean help deps
+.PHONY: check-cross all lib cli check unit unit-nogrid cli-test readme-test check-symbols check-switches run clean help deps
 .PHONY: help-check examples-check header-example-check
 
 EXAMPLES := $(patsubst examples/%.c,$(BUILD)/examples/%,$(wildcard examples/*.c))
@@ -133,6 +133,13 @@ unit: deps
 	CK_DEFAULT_TIMEOUT=120 $(TEST_BIN)
 	CK_DEFAULT_TIMEOUT=120 $(TEST_BIN)_profile
 
+# The whole unit suite against a library without the broadphase grid
+# (CAROM_ENABLE_GRID=0, what `carom lean` picks for small worlds): every
+# result, pinned hashes included, must be the grid build's.
+unit-nogrid: deps
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/nogrid CAROM_FLAGS='$(CAROM_FLAGS) -DCAROM_ENABLE_GRID=0' $(BUILD)/nogrid/carom_tests
+	CK_DEFAULT_TIMEOUT=120 $(BUILD)/nogrid/carom_tests
+
 cli-test: $(CLI)
 	sh tests/cli_test.sh $(CLI)
 
@@ -170,6 +177,7 @@ check: deps
 	@$(MAKE) --no-print-directory check-switches
 	@$(MAKE) --no-print-directory check-cross
 	@$(MAKE) --no-print-directory unit
+	@$(MAKE) --no-print-directory unit-nogrid
 	@$(MAKE) --no-print-directory readme-test
 	@$(MAKE) --no-print-directory header-example-check
 	@$(MAKE) --no-print-directory examples-check
@@ -213,8 +221,9 @@ help:
 	@echo "  make fuzz-build      the libFuzzer harnesses only, in $(BUILD)/fuzz/"
 	@echo ""
 	@echo "test"
-	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, readme-test, header-example-check, examples-check, validate-check, cli-test, stress-check, accuracy-check, check-embedded, lean-check, fuzz-check (reproducible, ~30 s a harness when clang is here), install-test, check-cxx, coverage-check, sanitize, memcheck, help-check, docs-check"
+	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, unit-nogrid, readme-test, header-example-check, examples-check, validate-check, cli-test, stress-check, accuracy-check, check-embedded, lean-check, fuzz-check (reproducible, ~30 s a harness when clang is here), install-test, check-cxx, coverage-check, sanitize, memcheck, help-check, docs-check"
 	@echo "  make unit            the Check unit tests, plain and profiling builds"
+	@echo "  make unit-nogrid     the unit tests against a library built with CAROM_ENABLE_GRID=0 (same results)"
 	@echo "  make cli-test        $(CLI)'s command-line tests (tests/cli_test.sh)"
 	@echo "  make readme-test     the README's example program compiles and runs"
 	@echo "  make header-example-check  the minimal program in carom.h's opening comment compiles, runs and prints what it says"
