@@ -6,8 +6,9 @@
  * in a cell is filed under the cell of its box centre, so two such boxes
  * that overlap have centres in the same or adjacent cells: each cell is
  * compared with itself and its four "forward" neighbours (right, and the
- * three above), which finds every pair exactly once. Cells are hashed into
- * a power-of-two table and filled by a counting sort, so the grid needs no
+ * three above), which finds every pair exactly once. Cells map into a
+ * power-of-two table (a patch of cells that tiles the plane, so that
+ * neighbouring cells are neighbours in memory) filled by a counting sort, so the grid needs no
  * allocation and no per-cell storage; items keep their cell coordinates, so
  * two cells that share a bucket are told apart. Boxes larger than a cell
  * ("big": walls, floors, long rods) are tested against the cells their box
@@ -90,14 +91,15 @@ static int cr_cell_of(float v)
     return i;
 }
 
-static unsigned cr_hash(int cx, int cy)
-{
-    return (unsigned)cx * 73856093u ^ (unsigned)cy * 19349663u;
-}
-
+/* The bucket of cell (cx, cy): the table is a 2^xbits by 2^ybits patch of
+ * cells that tiles the plane (cell coordinates modulo its sides), so
+ * neighbouring cells have neighbouring buckets: a cell's forward
+ * neighbours are one bucket and one row of buckets further on, and
+ * finding pairs walks the items almost in memory order (a scattering hash
+ * made this loop wait on memory: 38 % of a 10^4-body gas step). */
 static int cr_bucket(const cr_broadphase *bp, int cx, int cy)
 {
-    return (int)(cr_hash(cx, cy) & (unsigned)(bp->buckets - 1));
+    return (int)(((unsigned)cx & bp->xmask) | (((unsigned)cy & bp->ymask) << bp->xbits));
 }
 
 void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
@@ -136,6 +138,14 @@ void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
     bp->cell = cell;
     bp->inv_cell = cr_div(1.0f, cell);
     bp->buckets = cr_broadphase_bucket_cap(n);
+    {
+        int bits = 0;
+        while ((1 << bits) < bp->buckets)
+            ++bits;
+        bp->xbits = (bits + 1) / 2;
+        bp->xmask = (1u << bp->xbits) - 1u;
+        bp->ymask = (1u << (bits - bp->xbits)) - 1u;
+    }
 
     /* grid items to tmp (counted per bucket), big ones to the end */
     for (i = 0; i <= bp->buckets; ++i)

@@ -31,7 +31,8 @@ typedef struct cr_proxy {
 
 /*
  * A uniform grid rebuilt every step: cells a little larger than the
- * typical body, hashed into buckets, filled by a counting sort, so finding
+ * typical body, mapped into buckets (a patch of cells tiling the plane),
+ * filled by a counting sort, so finding
  * pairs is linear in the bodies whatever their layout (a sweep on one axis
  * is quadratic in a pile, where everything shares x ranges). Bodies larger
  * than a cell (walls, floors) are kept apart and tested against the cells
@@ -43,6 +44,8 @@ typedef struct cr_broadphase {
     int *count;              /* capacity + 1: sort counters */
     int capacity, bucket_cap;
     int grid_count, big_count, buckets;
+    int xbits;               /* the table is 2^xbits cells wide */
+    unsigned xmask, ymask;   /* cell coordinate masks of its width, height */
     float cell, inv_cell;
 } cr_broadphase;
 

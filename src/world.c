@@ -301,6 +301,8 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->bp.bucket_cap = c.buckets;
     w->bp.grid_count = w->bp.big_count = 0;
     w->bp.buckets = 1;
+    w->bp.xbits = 0;
+    w->bp.xmask = w->bp.ymask = 0u;
     w->bp.cell = w->bp.inv_cell = 1.0f;
     w->pairs = CR_AT(pairs, cr_pair);
     w->pair_tmp = CR_AT(pair_tmp, cr_pair);

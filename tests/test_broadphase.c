@@ -193,9 +193,10 @@ START_TEST(test_pair_overflow_is_counted_not_written)
 }
 END_TEST
 
-/* Boxes in one column of cells, up to 60 cells high: cells with the same x
- * and y 16 apart share a bucket of the 16-bucket table (the hash's y
- * factor is odd), and must still be told apart. The same along a row. */
+/* Boxes in one column of cells, up to 60 cells high: the 16-bucket table
+ * is a patch of 4 by 4 cells tiling the plane, so cells with the same x
+ * and y a multiple of 4 apart share a bucket (here all eight), and must
+ * still be told apart. The same along a row. */
 START_TEST(test_grid_tells_apart_cells_that_share_a_bucket)
 {
     static bp_fixture f;
