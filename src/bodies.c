@@ -59,6 +59,7 @@ carom_status carom_world_add_body(carom_world *w, const carom_body_def *def,
         ++w->sensor_count;
     w->prime = 1;
     w->grid_valid = 0;
+    w->scale_valid = 0;
     if (id)
         *id = cr_body_id(w, slot);
     return CAROM_OK;
@@ -125,6 +126,7 @@ carom_status carom_world_remove_body(carom_world *w, int id)
                             ((1u << (31 - CAROM_ID_INDEX_BITS)) - 1u);
     w->bodies[s].sleep_island = -1;
     --w->body_count;
+    w->scale_valid = 0;
     /* trailing free slots are no longer in use */
     while (w->slot_count > 0 && !(w->bodies[w->slot_count - 1].flags & CR_BODY_ALIVE))
         --w->slot_count;

@@ -300,6 +300,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->bp.capacity = c.bodies;
     w->bp.bucket_cap = c.buckets;
     w->bp.grid_count = w->bp.big_count = 0;
+    w->scale_valid = 0;
     w->bp.buckets = 1;
     w->bp.xbits = 0;
     w->bp.xmask = w->bp.ymask = 0u;
@@ -684,7 +685,6 @@ static carom_status cr_check_state(carom_world *w)
     for (i = 0; i < w->awake_count; ++i) {
         int id = w->awake[i];
         const cr_body *b = &w->bodies[id];
-        float ext = w->info[id].shape.extent;
         if (!cr_finite(b->x.x) || !cr_finite(b->x.y) || !cr_finite(b->v.x) ||
             !cr_finite(b->v.y) || !cr_finite(b->w) || !cr_finite(b->q.c) ||
             !cr_finite(b->q.s)) {
@@ -693,7 +693,9 @@ static carom_status cr_check_state(carom_world *w)
         }
         if (!cr_v2_within(b->x, CAROM_LIMIT_MAX_LENGTH) ||
             !cr_v2_within(b->v, CAROM_LIMIT_MAX_SPEED) ||
-            cr_gt(cr_mul(cr_abs(b->w), ext), CAROM_LIMIT_MAX_SPEED)) {
+            /* (the extent is in the cold record: read only if it turns) */
+            (!cr_eq(b->w, 0.0f) &&
+             cr_gt(cr_mul(cr_abs(b->w), w->info[id].shape.extent), CAROM_LIMIT_MAX_SPEED))) {
             w->error_body = cr_body_id(w, id);
             return CAROM_ERR_OUT_OF_RANGE;
         }
@@ -717,7 +719,12 @@ static carom_status cr_step(carom_world *w)
     carom_status st;
     cr_substep sub;
 
-    cr_scale_compute(w, &w->scale);
+    /* the scale follows the bodies' shapes and types: it changes only
+     * when a body is added or removed */
+    if (!w->scale_valid) {
+        cr_scale_compute(w, &w->scale);
+        w->scale_valid = 1;
+    }
     cr_island_awake_list(w);
     if (w->awake_count == 0)
         return CAROM_OK; /* everything sleeps or stands still */

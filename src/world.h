@@ -97,6 +97,8 @@ struct carom_world {
 
     /* per step */
     cr_scale scale;
+    int scale_valid;          /* scale is that of the bodies now (a body added
+                                 or removed clears it) */
     int *awake;               /* slots simulated this step */
     int awake_count;
     cr_box *boxes;            /* each body's box over the step */

@@ -6,6 +6,8 @@
 
 #include "test_util.h"
 
+#include "world.h"
+
 START_TEST(test_default_world_def_matches_config_header)
 {
     carom_world_def d = carom_default_world_def();
@@ -267,11 +269,46 @@ START_TEST(test_simulation_is_deterministic)
 }
 END_TEST
 
+/* The step's tolerances follow the bodies' mean equivalent radius (a
+ * circle's is its radius): the world keeps that scale between steps and
+ * must take it up again after a body is added or removed. Radii 0.5 and
+ * 1.5: 0.5, then (0.5 + 1.5) / 2 = 1, then 1.5 alone; the slop is
+ * CAROM_SLOP_PER_LENGTH of it. */
+START_TEST(test_step_scale_follows_added_and_removed_bodies)
+{
+    carom_world_def d = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int small;
+    d.gravity.y = 0.0f;
+    d.enable_sleep = 0;
+    t = tw_make(&d);
+    bd.radius = 0.5f;
+    bd.velocity.x = 1.0f;
+    small = tw_add(&t, &bd);
+    ck_assert_int_eq(carom_world_step(t.w), CAROM_OK);
+    ck_assert(t.w->scale.length == 0.5f);
+    ck_assert_int_eq(carom_world_step(t.w), CAROM_OK);
+    ck_assert(t.w->scale.length == 0.5f);
+    bd.radius = 1.5f;
+    bd.position.x = 10.0f;
+    tw_add(&t, &bd);
+    ck_assert_int_eq(carom_world_step(t.w), CAROM_OK);
+    ck_assert(t.w->scale.length == 1.0f);
+    ck_assert_float_eq_tol(t.w->scale.slop, CAROM_SLOP_PER_LENGTH * 1.0f, 1e-7f);
+    ck_assert_int_eq(carom_world_remove_body(t.w, small), CAROM_OK);
+    ck_assert_int_eq(carom_world_step(t.w), CAROM_OK);
+    ck_assert(t.w->scale.length == 1.5f);
+    tw_free(&t);
+}
+END_TEST
+
 Suite *suite_world(void)
 {
     Suite *s = suite_create("world");
     TCase *tc = tcase_create("api");
     tcase_add_test(tc, test_default_world_def_matches_config_header);
+    tcase_add_test(tc, test_step_scale_follows_added_and_removed_bodies);
     tcase_add_test(tc, test_bad_world_defs_get_their_status);
     tcase_add_test(tc, test_init_rejects_small_buffer_and_accepts_any_alignment);
     tcase_add_test(tc, test_full_world_refuses_bodies_and_stays_intact);
