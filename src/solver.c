@@ -431,6 +431,24 @@ static float cr_pseudo_vn(carom_world *w, const cr_contact *c, int k)
 
 static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap);
 
+/*
+ * The overlap the position correction works on. At a resting contact
+ * (touching and pushing since the last step) only what lies deeper than
+ * one linear slop (Box2D 2.4's allowed penetration); other contacts
+ * (impacts, a gas of elastic balls) are corrected to zero overlap.
+ * Removing every last bit of a resting overlap moves positions in every
+ * substep, and in a deep pile each such move turns the contacts a little,
+ * so last step's impulses no longer balance the weights: the bodies sink,
+ * the correction pushes them apart along slanted normals, and the pile
+ * creeps without end and never sleeps (docs/physics.md).
+ */
+static float cr_excess_overlap(const carom_world *w, const cr_contact *c, float sep)
+{
+    if (c->flags & CR_CONTACT_RESTING)
+        return cr_neg(cr_add(sep, w->scale.slop));
+    return cr_neg(sep);
+}
+
 void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
 {
     int it, i, k;
@@ -452,7 +470,7 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
                 float sep = cr_current_sep(c, &c->pts[k], sa, sb);
                 /* the part of the overlap to remove in this substep, as a
                  * separating pseudo-velocity over h */
-                float fix = cr_min(cr_mul(CAROM_POSITION_CORRECTION, cr_neg(sep)), cap);
+                float fix = cr_min(cr_mul(CAROM_POSITION_CORRECTION, cr_excess_overlap(w, c, sep)), cap);
                 bias[k] = cr_neg(cr_mul(cr_max(fix, 0.0f), s->inv_h));
                 any |= cr_lt(bias[k], 0.0f);
                 vn[k] = cr_pseudo_vn(w, c, k);
@@ -920,7 +938,7 @@ static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap)
                 int n;
                 for (j = 0; j < c->count; ++j) {
                     float sep = cr_current_sep(c, &c->pts[j], sa, sb);
-                    float fix = cr_min(cr_mul(CAROM_POSITION_CORRECTION, cr_neg(sep)), cap);
+                    float fix = cr_min(cr_mul(CAROM_POSITION_CORRECTION, cr_excess_overlap(w, c, sep)), cap);
                     float target = cr_mul(cr_max(fix, 0.0f), s->inv_h);
                     /* what the pseudo-velocities already lift, seen from u */
                     float vn = cr_mul(sign, cr_pseudo_vn(w, c, j));
