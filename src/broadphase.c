@@ -8,9 +8,10 @@
  * compared with itself and its four "forward" neighbours (right, and the
  * three above), which finds every pair exactly once. Cells map into a
  * power-of-two table (a patch of cells that tiles the plane, so that
- * neighbouring cells are neighbours in memory) filled by a counting sort, so the grid needs no
- * allocation and no per-cell storage; items keep their cell coordinates, so
- * two cells that share a bucket are told apart. Boxes larger than a cell
+ * neighbouring cells are neighbours in memory) filled by a counting sort,
+ * so the grid needs no allocation and no per-cell storage; items keep
+ * their cell coordinates, so two cells that share a bucket are told apart.
+ * Boxes larger than a cell
  * ("big": walls, floors, long rods) are tested against the cells their box
  * covers, or against all items when that is fewer.
  *
@@ -127,10 +128,10 @@ void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
                 ++count;
             }
         }
-        if (count > 0)
-            sum = small, n_mean = count;
-        else
-            n_mean = n;
+        if (count > 0) {
+            sum = small;
+            n_mean = count;
+        }
     }
     cell = n > 0 ? cr_mul(2.0f, cr_div(sum, (float)n_mean)) : 1.0f;
     if (!cr_gt(cell, 0.0f) || !cr_finite(cell))
