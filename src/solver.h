@@ -9,6 +9,7 @@
 typedef struct cr_substep {
     float h, inv_h;
     float push;              /* largest push-out speed */
+    float t;                 /* its start, s from the step's start */
 } cr_substep;
 
 void cr_substep_init(cr_substep *s, const carom_world *w, float h);

@@ -762,6 +762,7 @@ static carom_status cr_step(carom_world *w)
         float t0 = cr_mul((float)k, h);
         float t1 = k + 1 == n ? dt : cr_mul((float)(k + 1), h);
         int events_now = events && !w->budget_hit;
+        sub.t = t0;
         if (k > 0 && events_now) {
             CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
             st = cr_events_add_contacts(w, t0);
