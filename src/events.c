@@ -897,11 +897,17 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
     r->impact = cr_gt(r->approach, threshold);
     /* past the impact budget an impact is plastic (e = 0): a squeezed
      * chain then ends, and no energy is made (simultaneous Newton targets
-     * would make it; Poisson's expansion after the fact is stale) */
+     * would make it; Poisson's expansion after the fact is stale).
+     * A touching point that is not an impact holds (target 0) unless it
+     * was opening: then it may close in as fast as it was opening. Held
+     * at 0, its impulse P did work P vn- / 2 > 0 (a ball leaving a
+     * neighbour it had just bounced off, struck by a third ball, pushed
+     * the neighbour away too); now its work is P (vn+ + vn-) / 2 = 0, and
+     * the closing point is an impact of its own an instant later. */
     for (j = 0; j < m.count; ++j)
         r->target[j] = r->impact && !w->budget_hit
                            ? cr_mul(r->restitution, cr_max(0.0f, r->target[j]))
-                           : 0.0f;
+                           : cr_min(0.0f, r->target[j]);
     return 1;
 }
 
@@ -950,10 +956,21 @@ static void cr_hold_contacts(carom_world *w, int nb, int nr, float t, float t_en
     for (i = 0; i < nb; ++i) {
         int id = w->island[i];
         cr_body *b = &w->bodies[id];
+        cr_solver_body *sb = &w->sbody[id];
         w->island_v[i] = b->v;
         w->island_w[i] = b->w;
-        b->v = cr_vmadd(b->v, h, w->drift[id].a);
-        b->w = cr_add(b->w, cr_mul(h, w->drift[id].alpha));
+        /* predicted on the drift the solver gave it, not on an earlier
+         * hold of this substep: that hold answered the velocities before
+         * this instant's impulses, and kept on top of a bounce it would
+         * double the bounce (energy made: two holds in one substep sent
+         * an elastic pair apart at twice its approach) */
+        if (!sb->held) {
+            sb->held = 1;
+            sb->a_held = w->drift[id].a;
+            sb->alpha_held = w->drift[id].alpha;
+        }
+        b->v = cr_vmadd(b->v, h, sb->a_held);
+        b->w = cr_add(b->w, cr_mul(h, sb->alpha_held));
     }
     for (i = 0; i < nr; ++i)
         for (k = 0; k < w->rows[i].count; ++k) {

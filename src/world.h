@@ -36,6 +36,9 @@ typedef struct cr_solver_body {
     int level;  /* support level: 0 rests on a static body, n + 1 on a
                    level-n body; -1 not supported (or no gravity) */
     int active; /* has a contact solved this substep */
+    int held;   /* events: an impact's hold changed its drift this substep */
+    cr_v2 a_held; /* its drift before the first such hold */
+    float alpha_held;
 } cr_solver_body;
 
 /* An entry of the impact queue: a pair's next impact as computed when the

@@ -94,6 +94,80 @@ static inline tw tw_pair(carom_method method, float dt, float rest_speed,
     return t;
 }
 
+/*
+ * An elastic gas: n frictionless balls (radius 0.1 m, e = 1) on a square
+ * grid of 0.5 m pitch filling a closed box of static walls, no gravity,
+ * rest speed 0, velocities drawn in [-1.5, 1.5]^2 m/s; `steps` steps of
+ * `method`. Returns the largest and the final kinetic energy, each over
+ * the starting one.
+ */
+static inline void tw_elastic_gas(carom_method method, int n, int steps,
+                                  double *worst, double *end)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_body_def g = carom_default_body_def();
+    tw t;
+    int i, k, side = 1;
+    double e0 = 0.0, e = 0.0;
+    float half, pitch;
+    unsigned seed = 12345u;
+    while (side * side < n)
+        ++side;
+    /* 0.25 m^2 per ball, at least */
+    pitch = 0.5f;
+    half = 0.5f * pitch * (float)side;
+    wd.method = method;
+    wd.gravity.y = 0.0f;
+    wd.rest_speed = 0.0f;
+    wd.max_bodies = n + 4;
+    t = tw_make(&wd);
+    g.type = CAROM_BODY_STATIC;
+    g.friction = 0.0f;
+    g.restitution = 1.0f;
+    carom_body_def_set_box(&g, half + 1.0f, 0.5f);
+    g.position.y = -half - 0.5f;
+    tw_add(&t, &g);
+    g.position.y = half + 0.5f;
+    tw_add(&t, &g);
+    carom_body_def_set_box(&g, 0.5f, half + 1.0f);
+    g.position.y = 0.0f;
+    g.position.x = -half - 0.5f;
+    tw_add(&t, &g);
+    g.position.x = half + 0.5f;
+    tw_add(&t, &g);
+    bd.radius = 0.1f;
+    bd.friction = 0.0f;
+    bd.restitution = 1.0f;
+    for (i = 0; i < n; ++i) {
+        float vx, vy;
+        seed = seed * 1103515245u + 12345u;
+        vx = (float)((seed >> 8) & 0xffff) / 65536.0f * 3.0f - 1.5f;
+        seed = seed * 1103515245u + 12345u;
+        vy = (float)((seed >> 8) & 0xffff) / 65536.0f * 3.0f - 1.5f;
+        bd.position.x = -half + pitch * (0.5f + (float)(i % side));
+        bd.position.y = -half + pitch * (0.5f + (float)(i / side));
+        bd.velocity.x = vx;
+        bd.velocity.y = vy;
+        tw_add(&t, &bd);
+        e0 += 0.5 * ((double)vx * vx + (double)vy * vy);
+    }
+    *worst = 0.0;
+    for (k = 0; k < steps; ++k) {
+        tw_steps(&t, 1);
+        e = 0.0;
+        for (i = 0; i < n; ++i) {
+            carom_body_state s = tw_state(&t, 4 + i);
+            e += 0.5 * ((double)s.velocity.x * s.velocity.x +
+                        (double)s.velocity.y * s.velocity.y);
+        }
+        if (e / e0 > *worst)
+            *worst = e / e0;
+    }
+    *end = e / e0;
+    tw_free(&t);
+}
+
 /* |a - b| <= tol * max(1, |b|) */
 #define ck_assert_close(a, b, tol)                                             \
     do {                                                                       \
