@@ -366,8 +366,10 @@ static void cr_free_velocity(const carom_world *w, int id, float t, cr_v2 *v, fl
  * substep's start instead, a ball that a wall had already stopped in an
  * earlier substep met a second ball with the approach of a stopped ball,
  * while the wall still asked for the first ball's rebound: the targets
- * added energy (1D: a ball at -1 against a wall struck by one at -3 left
- * at +1 and +4, kinetic energy 5 -> 8.5), and an elastic gas of 100 balls
+ * added energy (1D: a ball at -1 m/s against a wall, struck by one at -3
+ * in the same step, left at +1 and up to +4 instead of +3: kinetic energy
+ * 5 -> 8.5; +3.6 in test_discrete_wall_and_two_balls_in_one_step_keep_
+ * the_energy), and an elastic gas of 100 balls
  * heated up 2.6x in 6000 steps (docs/physics.md). For a lone contact the
  * two are the same approach, within rounding.
  */
