@@ -962,7 +962,7 @@ static void cr_hold_contacts(carom_world *w, int nb, int nr, float t, float t_en
         /* predicted on the drift the solver gave it, not on an earlier
          * hold of this substep: that hold answered the velocities before
          * this instant's impulses, and kept on top of a bounce it would
-         * double the bounce (energy made: two holds in one substep sent
+         * add the bounce again (energy made: two holds in one substep sent
          * an elastic pair apart at twice its approach) */
         if (!sb->held) {
             sb->held = 1;
