@@ -36,19 +36,6 @@ static float cr_lever(const cr_shape *s, cr_v2 r, cr_v2 dir, int normal)
     return cr_vcross(r, dir);
 }
 
-float cr_effective_mass(const cr_body *A, const cr_body *B, float la, float lb)
-{
-    float k = cr_add(cr_add(A->inv_m, B->inv_m),
-                     cr_add(cr_mul(A->inv_I, cr_mul(la, la)),
-                            cr_mul(B->inv_I, cr_mul(lb, lb))));
-    return cr_gt(k, 0.0f) ? cr_div(1.0f, k) : 0.0f;
-}
-
-cr_v2 cr_point_velocity(cr_v2 v, float w, cr_v2 r)
-{
-    return cr_vadd(v, cr_vcross_sv(w, r));
-}
-
 /* How far two bodies can close in over time h: the sum of their speeds
  * (not their relative speed: two bodies falling side by side meet when the
  * lower one lands), plus each body's spin times its extent, plus the

@@ -72,11 +72,21 @@ typedef struct cr_warm {
     float pn[CAROM_MAX_MANIFOLD_POINTS], pt[CAROM_MAX_MANIFOLD_POINTS];
 } cr_warm;
 
-/* 1 / (1/m_a + 1/m_b + la^2 / I_a + lb^2 / I_b) for lever arms la, lb. */
-float cr_effective_mass(const cr_body *A, const cr_body *B, float la, float lb);
+/* 1 / (1/m_a + 1/m_b + la^2 / I_a + lb^2 / I_b) for lever arms la, lb
+ * (inline: the solvers' sweeps call these for every contact point). */
+CR_INLINE float cr_effective_mass(const cr_body *A, const cr_body *B, float la, float lb)
+{
+    float k = cr_add(cr_add(A->inv_m, B->inv_m),
+                     cr_add(cr_mul(A->inv_I, cr_mul(la, la)),
+                            cr_mul(B->inv_I, cr_mul(lb, lb))));
+    return cr_gt(k, 0.0f) ? cr_div(1.0f, k) : 0.0f;
+}
 
 /* Velocity of the material point at r from a centre moving at (v, w). */
-cr_v2 cr_point_velocity(cr_v2 v, float w, cr_v2 r);
+CR_INLINE cr_v2 cr_point_velocity(cr_v2 v, float w, cr_v2 r)
+{
+    return cr_vadd(v, cr_vcross_sv(w, r));
+}
 
 /* How far bodies a and b can close in over time h, plus the speculative
  * distance: the reach of their contact. */

@@ -249,16 +249,54 @@ static float cr_point_vn(cr_v2 va, float wa, cr_v2 vb, float wb, const cr_contac
 }
 
 /*
- * Solve the normal rows of contact c for velocities (va, wa), (vb, wb) of
- * its bodies, accumulated impulses acc[] (>= 0) and targets vn + bias[] >=
- * 0: both points as one 2x2 problem when the manifold allows, else one
- * after the other. Calls back with each point's impulse change.
+ * The normal rows of one contact, on one kind of velocity: the bodies'
+ * velocities (the velocity sweeps) or their pseudo-velocities (the
+ * position sweep). Pointers to the two bodies' (v, w) being solved, their
+ * inverse masses, and the normal lever arms of each point, taken once per
+ * contact (an impulse's lever is the same for every row of a sweep).
  */
-typedef void (*cr_apply_fn)(carom_world *w, const cr_contact *c, int k, float d);
+typedef struct cr_rows_ctx {
+    cr_v2 *va, *vb;
+    float *wa, *wb;
+    float ima, imb, iia, iib;
+    float la[CAROM_MAX_MANIFOLD_POINTS], lb[CAROM_MAX_MANIFOLD_POINTS];
+} cr_rows_ctx;
 
-static void cr_normal_rows(carom_world *w, const cr_contact *c, float *acc,
-                           const float *bias, const float *vn, cr_apply_fn apply,
-                           float (*vn_of)(carom_world *, const cr_contact *, int))
+static void cr_rows_levers(const carom_world *w, const cr_contact *c, cr_rows_ctx *x)
+{
+    int k;
+    for (k = 0; k < c->count; ++k) {
+        x->la[k] = cr_normal_lever(w, c->a, c->pts[k].ra, c->n);
+        x->lb[k] = cr_normal_lever(w, c->b, c->pts[k].rb, c->n);
+    }
+}
+
+/* Normal impulse d at point k: -d n on A, +d n on B (as cr_apply). */
+CR_INLINE void cr_rows_apply(cr_rows_ctx *x, cr_v2 n, int k, float d)
+{
+    cr_v2 I = cr_vscale(d, n);
+    *x->va = cr_vmadd(*x->va, cr_neg(x->ima), I);
+    *x->vb = cr_vmadd(*x->vb, x->imb, I);
+#if CAROM_ENABLE_ROTATION
+    *x->wa = cr_sub(*x->wa, cr_mul(x->iia, cr_mul(x->la[k], d)));
+    *x->wb = cr_add(*x->wb, cr_mul(x->iib, cr_mul(x->lb[k], d)));
+#else
+    (void)k;
+#endif
+}
+
+CR_INLINE float cr_rows_vn(const cr_rows_ctx *x, const cr_contact *c, int k)
+{
+    return cr_point_vn(*x->va, *x->wa, *x->vb, *x->wb, c, &c->pts[k]);
+}
+
+/*
+ * Solve the normal rows of contact c for the velocities of x, accumulated
+ * impulses acc[] (>= 0) and targets vn + bias[] >= 0: both points as one
+ * 2x2 problem when the manifold allows, else one after the other.
+ */
+static void cr_normal_rows(cr_rows_ctx *x, const cr_contact *c, float *acc,
+                           const float *bias, const float *vn)
 {
     int k;
     if (c->count == 2 && c->block) {
@@ -270,36 +308,36 @@ static void cr_normal_rows(carom_world *w, const cr_contact *c, float *acc,
         if (cr_lcp2(c->k11, c->k12, c->k22, b1, b2, &x1, &x2)) {
             acc[0] = x1;
             acc[1] = x2;
-            apply(w, c, 0, cr_sub(x1, a1));
-            apply(w, c, 1, cr_sub(x2, a2));
+            cr_rows_apply(x, c->n, 0, cr_sub(x1, a1));
+            cr_rows_apply(x, c->n, 1, cr_sub(x2, a2));
             return;
         }
     }
     for (k = 0; k < c->count; ++k) {
         /* the first point's impulse changed the second's velocity */
-        float v = k == 0 ? vn[0] : vn_of(w, c, k);
-        float x = cr_max(cr_sub(acc[k], cr_mul(c->pts[k].mass_n, cr_add(v, bias[k]))),
+        float v = k == 0 ? vn[0] : cr_rows_vn(x, c, k);
+        float p = cr_max(cr_sub(acc[k], cr_mul(c->pts[k].mass_n, cr_add(v, bias[k]))),
                          0.0f);
-        float d = cr_sub(x, acc[k]);
-        acc[k] = x;
-        apply(w, c, k, d);
+        float d = cr_sub(p, acc[k]);
+        acc[k] = p;
+        cr_rows_apply(x, c->n, k, d);
     }
 }
 
 /* ---- velocities ------------------------------------------------------------ */
 
-static void cr_apply_velocity(carom_world *w, const cr_contact *c, int k, float d)
+static void cr_rows_of_velocity(carom_world *w, const cr_contact *c, cr_rows_ctx *x)
 {
-    const cr_contact_point *p = &c->pts[k];
-    cr_apply(&w->bodies[c->a], &w->bodies[c->b],
-             cr_normal_lever(w, c->a, p->ra, c->n),
-             cr_normal_lever(w, c->b, p->rb, c->n), c->n, d);
-}
-
-static float cr_velocity_vn(carom_world *w, const cr_contact *c, int k)
-{
-    const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
-    return cr_point_vn(A->v, A->w, B->v, B->w, c, &c->pts[k]);
+    cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+    x->va = &A->v;
+    x->vb = &B->v;
+    x->wa = &A->w;
+    x->wb = &B->w;
+    x->ima = A->inv_m;
+    x->imb = B->inv_m;
+    x->iia = A->inv_I;
+    x->iib = B->inv_I;
+    cr_rows_levers(w, c, x);
 }
 
 #if CAROM_ENABLE_FRICTION
@@ -392,7 +430,9 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
     const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
     float bias[CAROM_MAX_MANIFOLD_POINTS], vn[CAROM_MAX_MANIFOLD_POINTS];
     float acc[CAROM_MAX_MANIFOLD_POINTS];
+    cr_rows_ctx x;
     int k;
+    cr_rows_of_velocity(w, c, &x);
     for (k = 0; k < c->count; ++k) {
         const cr_contact_point *p = &c->pts[k];
         float sep = cr_current_sep(c, p, sa, sb);
@@ -406,7 +446,7 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
                 bias[k] = cr_mul(sep, s->inv_h);
             }
         }
-        vn[k] = cr_velocity_vn(w, c, k);
+        vn[k] = cr_rows_vn(&x, c, k);
         acc[k] = p->pn;
         /* restitution answers the approach of the substep in which the
          * point first pushes: nearer the instant of impact than the start
@@ -414,7 +454,7 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
         if (first && cr_eq(p->max_pn, 0.0f))
             c->pts[k].rel_vn = cr_approach_before(w, c, p, s);
     }
-    cr_normal_rows(w, c, acc, bias, vn, cr_apply_velocity, cr_velocity_vn);
+    cr_normal_rows(&x, c, acc, bias, vn);
     for (k = 0; k < c->count; ++k) {
         c->pts[k].pn = acc[k];
         c->pts[k].max_pn = cr_max(c->pts[k].max_pn, acc[k]);
@@ -460,20 +500,18 @@ void cr_solver_solve(carom_world *w, const cr_substep *s, int first,
 
 /* ---- positions ---------------------------------------------------------------- */
 
-static void cr_apply_pseudo(carom_world *w, const cr_contact *c, int k, float d)
+static void cr_rows_of_pseudo(carom_world *w, const cr_contact *c, cr_rows_ctx *x)
 {
-    const cr_contact_point *p = &c->pts[k];
-    const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
     cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
-    cr_v2 I = cr_vscale(d, c->n);
-    sa->vp = cr_vmadd(sa->vp, cr_neg(A->inv_m), I);
-    sb->vp = cr_vmadd(sb->vp, B->inv_m, I);
-#if CAROM_ENABLE_ROTATION
-    sa->wp = cr_sub(sa->wp, cr_mul(A->inv_I, cr_mul(cr_normal_lever(w, c->a, p->ra, c->n), d)));
-    sb->wp = cr_add(sb->wp, cr_mul(B->inv_I, cr_mul(cr_normal_lever(w, c->b, p->rb, c->n), d)));
-#else
-    (void)p;
-#endif
+    x->va = &sa->vp;
+    x->vb = &sb->vp;
+    x->wa = &sa->wp;
+    x->wb = &sb->wp;
+    x->ima = w->bodies[c->a].inv_m;
+    x->imb = w->bodies[c->b].inv_m;
+    x->iia = w->bodies[c->a].inv_I;
+    x->iib = w->bodies[c->b].inv_I;
+    cr_rows_levers(w, c, x);
 }
 
 static float cr_pseudo_vn(carom_world *w, const cr_contact *c, int k)
@@ -533,9 +571,11 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
                 continue;
             {
                 float acc[CAROM_MAX_MANIFOLD_POINTS];
+                cr_rows_ctx x;
+                cr_rows_of_pseudo(w, c, &x);
                 for (k = 0; k < c->count; ++k)
                     acc[k] = c->pts[k].pp;
-                cr_normal_rows(w, c, acc, bias, vn, cr_apply_pseudo, cr_pseudo_vn);
+                cr_normal_rows(&x, c, acc, bias, vn);
                 for (k = 0; k < c->count; ++k)
                     c->pts[k].pp = acc[k];
             }
