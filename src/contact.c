@@ -238,7 +238,10 @@ void cr_contact_remake(carom_world *w, cr_contact *c)
 }
 
 /* Keep this step's impulses for the next, in (a, b) order: contacts made
- * during the step sit at the end of the list, so walk the pairs. */
+ * during the step sit at the end of the list, so walk the pairs. They
+ * overwrite the last step's, which only cr_contacts_build reads: the step
+ * calls this after everything that can fail, so a failed step keeps the
+ * last step's impulses (one array, not two). */
 void cr_contacts_store(carom_world *w)
 {
     int i, k, n = 0;
@@ -248,7 +251,7 @@ void cr_contacts_store(carom_world *w)
         if (w->pairs[i].contact < 0)
             continue;
         c = &w->contacts[w->pairs[i].contact];
-        wm = &w->warm_next[n++];
+        wm = &w->warm[n++];
         wm->a = c->a;
         wm->b = c->b;
         for (k = 0; k < CAROM_MAX_MANIFOLD_POINTS; ++k) {
@@ -257,7 +260,7 @@ void cr_contacts_store(carom_world *w)
             wm->pt[k] = k < c->count ? c->pts[k].pt : 0.0f;
         }
     }
-    w->warm_next_count = n;
+    w->warm_count = n;
 }
 
 /*

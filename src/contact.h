@@ -116,7 +116,8 @@ void cr_contact_remake(carom_world *w, cr_contact *c);
 int cr_lcp2(float k11, float k12, float k22, float b1, float b2, float *x1,
             float *x2);
 
-/* The impulses to warm-start the next step, into w->warm_next. */
+/* The impulses to warm-start the next step, into w->warm (over the last
+ * step's: call it when the step can no longer fail). */
 void cr_contacts_store(carom_world *w);
 
 #endif /* CAROM_CONTACT_H */

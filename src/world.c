@@ -169,7 +169,7 @@ static void cr_caps_of(const carom_world_def *d, cr_caps *c)
 typedef struct cr_layout {
     size_t world, bodies, backup, info, boxes, awake, sbody, drift, mark, island,
         island_v, island_w, regrown, pair_head, proxies, ptmp, start, count,
-        pairs, pair_tmp, contacts, solve_order, support, warm, warm_next, heap, rows,
+        pairs, pair_tmp, contacts, solve_order, support, warm, heap, rows,
         direct_k, direct_x, direct_u, events, touch, touch_next, touch_events, active, total;
 } cr_layout;
 
@@ -205,7 +205,6 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     CR_PLACE(regrown, c->bodies, int);
     CR_PLACE(pair_head, c->bodies, int);
     CR_PLACE(proxies, c->bodies, cr_proxy);
-    CR_PLACE(ptmp, CAROM_ENABLE_GRID ? c->bodies : 0, cr_proxy);
     CR_PLACE(start, c->buckets + 1, int);
     CR_PLACE(count, c->bodies + 1, int);
     CR_PLACE(pairs, c->pairs, cr_pair);
@@ -218,10 +217,15 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
         l->pair_tmp = l->contacts;
     else
         CR_PLACE(pair_tmp, c->pairs > c->touches ? c->pairs : c->touches, cr_pair);
+    /* so is the grid's sort scratch, used before the pairs are found */
+    if (!CAROM_ENABLE_GRID ||
+        (size_t)c->contacts * sizeof(cr_contact) >= (size_t)c->bodies * sizeof(cr_proxy))
+        l->ptmp = l->contacts;
+    else
+        CR_PLACE(ptmp, c->bodies, cr_proxy);
     CR_PLACE(solve_order, c->contacts, int);
     CR_PLACE(support, c->bodies, int);
     CR_PLACE(warm, c->contacts, cr_warm);
-    CR_PLACE(warm_next, c->contacts, cr_warm);
     CR_PLACE(heap, c->heap, cr_heap_entry);
     CR_PLACE(rows, c->rows, cr_impact_row);
     CR_PLACE(direct_k, (long)c->direct * c->direct, float);
@@ -312,8 +316,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->contacts = CR_AT(contacts, cr_contact);
     w->contact_count = 0;
     w->warm = CR_AT(warm, cr_warm);
-    w->warm_next = CR_AT(warm_next, cr_warm);
-    w->warm_count = w->warm_next_count = 0;
+    w->warm_count = 0;
     w->sbody = CR_AT(sbody, cr_solver_body);
     w->solve_order = CR_AT(solve_order, int);
     w->solve_count = 0;
@@ -857,13 +860,6 @@ carom_status carom_world_step(carom_world *w)
         w->touch_events_dropped = 0;
         w->error_body = err;
         return st;
-    }
-    if (w->awake_count > 0) {
-        /* (a step with nothing awake stored none: the warm starts stay) */
-        cr_warm *t = w->warm;
-        w->warm = w->warm_next;
-        w->warm_count = w->warm_next_count;
-        w->warm_next = t;
     }
     cr_note_escapes(w);
     cr_touch_update(w);

@@ -111,8 +111,9 @@ struct carom_world {
     int *pair_head;           /* per body: its first pair (cr_pair.next_*) */
     cr_contact *contacts;
     int contact_count;
-    cr_warm *warm, *warm_next;/* impulses of the last step; of this one */
-    int warm_count, warm_next_count;
+    cr_warm *warm;            /* impulses of the last step (cr_contacts_store
+                                 overwrites them at the end of this one) */
+    int warm_count;
     cr_solver_body *sbody;
     int *active;              /* bodies the solver takes this substep */
     int active_count;
