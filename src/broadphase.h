@@ -14,9 +14,10 @@ typedef struct cr_pair {
     int stamp;     /* events: bumped each time toi is recomputed */
     int va, vb;    /* events: drift versions of a and b it was computed with */
     int mark;      /* events: island stamp */
-    int met;       /* events: CR_PAIR_* bits */
-    int solved;    /* events: its contact was the solver's when searched */
     float toi;     /* events: next impact, local step time (CR_NEVER: none) */
+    unsigned char met;    /* events: CR_PAIR_* bits */
+    unsigned char solved; /* events: its contact was the solver's when
+                             searched */
 } cr_pair;
 
 #define CR_PAIR_MET 1 /* met in this substep: needs a contact */

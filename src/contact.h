@@ -55,13 +55,13 @@ typedef struct cr_contact {
     int a, b;          /* body slots, a < b */
     int pair;          /* the candidate pair it belongs to */
     cr_v2 n;           /* unit normal a -> b at the start of the step */
-    int count;
-    unsigned flags;
+    unsigned char count;
+    unsigned char block; /* 2 points: solved as one 2x2 problem (K well
+                            conditioned) */
+    unsigned short flags;
     float friction, restitution;
     float reach;       /* speculative distance of this pair in the step */
-    float k11, k12, k22; /* 2 points: the normal effective-mass matrix K
-                            (inverse); block = 1 if well conditioned */
-    int block;
+    float k11, k12, k22; /* 2 points: the normal effective-mass matrix K */
     cr_contact_point pts[CAROM_MAX_MANIFOLD_POINTS];
 } cr_contact;
 

@@ -35,10 +35,11 @@ typedef struct cr_solver_body {
     float load; /* priming: weight carried, as an impulse per substep */
     int level;  /* support level: 0 rests on a static body, n + 1 on a
                    level-n body; -1 not supported (or no gravity) */
-    int active; /* has a contact solved this substep */
-    int held;   /* events: an impact's hold changed its drift this substep */
-    cr_v2 a_held; /* its drift before the first such hold */
-    float alpha_held;
+    cr_v2 a_held; /* events: its drift before the first hold of this */
+    float alpha_held; /* substep that changed it */
+    unsigned char active; /* has a contact solved this substep */
+    unsigned char held;   /* events: an impact's hold changed its drift
+                             this substep */
 } cr_solver_body;
 
 /* An entry of the impact queue: a pair's next impact as computed when the
