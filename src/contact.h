@@ -50,6 +50,8 @@ typedef struct cr_contact_point {
 #define CR_CONTACT_RESTING 8u  /* touching and pushing already last step:
                                   a resting contact, the solver's whatever
                                   its approach (no micro-collisions) */
+#define CR_CONTACT_SHOCK_A 16u /* shock propagation: a support of body a */
+#define CR_CONTACT_SHOCK_B 32u /* ... of body b (cr_solver_mark_shocks) */
 
 typedef struct cr_contact {
     int a, b;          /* body slots, a < b */

@@ -794,6 +794,7 @@ void cr_solver_levels(carom_world *w)
         }
     }
     w->support_count = n;
+    cr_solver_mark_shocks(w);
 }
 
 /* Does the contact through pair p support body u (from a body below)? */
@@ -806,6 +807,41 @@ static int cr_support_of(const carom_world *w, const cr_pair *p, int u, cr_v2 up
         (w->sbody[v].level < 0 || w->sbody[v].level >= w->sbody[u].level))
         return 0;
     return cr_supports(&w->contacts[p->contact], v, up);
+}
+
+/* The flag that marks the contact through pair p a shock support of u. */
+static unsigned cr_shock_flag(const cr_pair *p, int u)
+{
+    return p->a == u ? CR_CONTACT_SHOCK_A : CR_CONTACT_SHOCK_B;
+}
+
+void cr_solver_mark_shocks(carom_world *w)
+{
+    int i, k;
+    cr_v2 up;
+    for (i = 0; i < w->contact_count; ++i)
+        w->contacts[i].flags &= (unsigned short)~(CR_CONTACT_SHOCK_A | CR_CONTACT_SHOCK_B);
+    if (!cr_up(w, &up))
+        return;
+    for (i = 0; i < w->support_count; ++i) {
+        int u = w->support[i];
+        for (k = w->pair_head[u]; k >= 0;) {
+            const cr_pair *p = &w->pairs[k];
+            if (cr_support_of(w, p, u, up) &&
+                cr_gt(cr_lift(&w->contacts[p->contact], p->a == u ? p->b : p->a, up),
+                      CR_SHOCK_COS))
+                w->contacts[p->contact].flags |= (unsigned short)cr_shock_flag(p, u);
+            k = p->a == u ? p->next_a : p->next_b;
+        }
+    }
+}
+
+/* Does shock propagation take the contact through pair p, with u above? */
+static int cr_shock_of(const carom_world *w, const cr_pair *p, int u)
+{
+    return p->contact >= 0 &&
+           (w->contacts[p->contact].flags & cr_shock_flag(p, u)) &&
+           (w->contacts[p->contact].flags & CR_CONTACT_SOLVE);
 }
 
 /*
@@ -955,10 +991,7 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];
             int next = p->a == u ? p->next_a : p->next_b;
-            if (cr_support_of(w, p, u, up) &&
-                (w->contacts[p->contact].flags & CR_CONTACT_SOLVE) &&
-                cr_gt(cr_lift(&w->contacts[p->contact], p->a == u ? p->b : p->a, up),
-                      CR_SHOCK_COS)) {
+            if (cr_shock_of(w, p, u)) {
                 const cr_contact *c = &w->contacts[p->contact];
                 const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
                 const cr_body *U = &w->bodies[u];
@@ -1021,10 +1054,7 @@ static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap)
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];
             int next = p->a == u ? p->next_a : p->next_b;
-            if (cr_support_of(w, p, u, up) &&
-                (w->contacts[p->contact].flags & CR_CONTACT_SOLVE) &&
-                cr_gt(cr_lift(&w->contacts[p->contact], p->a == u ? p->b : p->a, up),
-                      CR_SHOCK_COS)) {
+            if (cr_shock_of(w, p, u)) {
                 const cr_contact *c = &w->contacts[p->contact];
                 const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
                 float sign = u == c->b ? 1.0f : -1.0f;

@@ -34,6 +34,12 @@ int cr_solver_classify(carom_world *w, int events);
  * static ones, along the touching contacts; none without gravity). */
 void cr_solver_levels(carom_world *w);
 
+/* Mark the contacts shock propagation takes (a support within 8 degrees
+ * of the vertical, by a body lower in the order), with the side of the
+ * upper body: cr_solver_levels does it for the step; the events methods
+ * again after each substep's impacts, which remake and add contacts. */
+void cr_solver_mark_shocks(carom_world *w);
+
 /* After the relax sweeps: one sweep up the support order with every
  * supporting body below held fixed (shock propagation). */
 void cr_solver_shock(carom_world *w, const cr_substep *s);

@@ -773,7 +773,10 @@ static carom_status cr_step(carom_world *w)
                 return st;
         }
         CR_PHASE(w, CAROM_PHASE_RESTING);
-        cr_solver_classify(w, events_now);
+        /* the discrete method's contacts are all the solver's, and none
+         * is added during the step: the first substep's list holds */
+        if (k == 0 || events)
+            cr_solver_classify(w, events_now);
         cr_sync_active(w, t0);
         cr_solver_update_deltas(w);
         cr_solver_kick_and_warm(w, &sub);
@@ -786,6 +789,7 @@ static carom_status cr_step(carom_world *w)
             st = cr_events_advance(w, t1);
             if (st != CAROM_OK)
                 return st;
+            cr_solver_mark_shocks(w);
         }
         CR_PHASE(w, CAROM_PHASE_INTEGRATION);
         cr_sync_active(w, t1);
