@@ -99,7 +99,7 @@ void cr_contact_from_manifold(const carom_world *w, cr_contact *c,
     }
     c->block = 0;
     c->k11 = c->k12 = c->k22 = 0.0f;
-    if (m->count == 2) {
+    if (CR_TWO_POINTS && m->count == 2) {
         float l1a = cr_lever(&ia->shape, c->pts[0].ra, m->n, 1);
         float l1b = cr_lever(&ib->shape, c->pts[0].rb, m->n, 1);
         float l2a = cr_lever(&ia->shape, c->pts[1].ra, m->n, 1);
@@ -123,7 +123,7 @@ static void cr_warm_match(cr_contact *c, const cr_warm *wm)
 {
     int k, l;
     for (k = 0; k < c->count; ++k)
-        for (l = 0; l < CAROM_MAX_MANIFOLD_POINTS; ++l)
+        for (l = 0; l < CR_MANIFOLD_POINTS; ++l)
             if (wm->id[l] == c->pts[k].id) {
                 c->pts[k].pn = wm->pn[l];
                 c->pts[k].pt = wm->pt[l];
@@ -254,7 +254,7 @@ void cr_contacts_store(carom_world *w)
         wm = &w->warm[n++];
         wm->a = c->a;
         wm->b = c->b;
-        for (k = 0; k < CAROM_MAX_MANIFOLD_POINTS; ++k) {
+        for (k = 0; k < CR_MANIFOLD_POINTS; ++k) {
             wm->id[k] = k < c->count ? c->pts[k].id : CR_NO_ID;
             wm->pn[k] = k < c->count ? c->pts[k].pn : 0.0f;
             wm->pt[k] = k < c->count ? c->pts[k].pt : 0.0f;

@@ -8,6 +8,17 @@
 
 #include "body.h"
 
+/* Contact points per pair: a build without polygons has only circles,
+ * which touch at one point, so its manifolds, contacts, warm starts and
+ * impact rows hold one, and the two-point code (block solves, friction
+ * of a face) compiles away. */
+#if CAROM_ENABLE_POLYGONS
+#define CR_MANIFOLD_POINTS CAROM_MAX_MANIFOLD_POINTS
+#else
+#define CR_MANIFOLD_POINTS 1
+#endif
+#define CR_TWO_POINTS (CR_MANIFOLD_POINTS > 1)
+
 /* No feature id: a point slot that holds nothing. */
 #define CR_NO_ID 0xffffffffu
 
@@ -20,8 +31,8 @@ typedef struct cr_manifold_point {
 
 typedef struct cr_manifold {
     cr_v2 n;        /* unit normal from body a towards body b */
-    int count;      /* 0..CAROM_MAX_MANIFOLD_POINTS */
-    cr_manifold_point pts[CAROM_MAX_MANIFOLD_POINTS];
+    int count;      /* 0..CR_MANIFOLD_POINTS */
+    cr_manifold_point pts[CR_MANIFOLD_POINTS];
 } cr_manifold;
 
 /* One point of a contact constraint. */
@@ -64,14 +75,14 @@ typedef struct cr_contact {
     float friction, restitution;
     float reach;       /* speculative distance of this pair in the step */
     float k11, k12, k22; /* 2 points: the normal effective-mass matrix K */
-    cr_contact_point pts[CAROM_MAX_MANIFOLD_POINTS];
+    cr_contact_point pts[CR_MANIFOLD_POINTS];
 } cr_contact;
 
 /* Impulses kept from one step to warm-start the next, sorted by (a, b). */
 typedef struct cr_warm {
     int a, b;
-    unsigned id[CAROM_MAX_MANIFOLD_POINTS];
-    float pn[CAROM_MAX_MANIFOLD_POINTS], pt[CAROM_MAX_MANIFOLD_POINTS];
+    unsigned id[CR_MANIFOLD_POINTS];
+    float pn[CR_MANIFOLD_POINTS], pt[CR_MANIFOLD_POINTS];
 } cr_warm;
 
 /* 1 / (1/m_a + 1/m_b + la^2 / I_a + lb^2 / I_b) for lever arms la, lb

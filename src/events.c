@@ -480,7 +480,7 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
 #if CAROM_ENABLE_FRICTION
     const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
     cr_v2 t = cr_vright(r->n);
-    if (cr_gt(r->friction, 0.0f) && r->count == 2) {
+    if (CR_TWO_POINTS && cr_gt(r->friction, 0.0f) && r->count == 2) {
         /* one row for both points (same line of action), as the contact
          * solver does: no favoured point */
         cr_v2 ra = cr_vscale(0.5f, cr_vadd(r->ra[0], r->ra[1]));
@@ -510,7 +510,7 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
             change = cr_max(change, cr_div(cr_abs(d), r->mass_t[k]));
         }
 #endif
-    if (r->block) {
+    if (CR_TWO_POINTS && r->block) {
         float a1 = r->pn[0], a2 = r->pn[1], x1, x2;
         float b1 = cr_sub(cr_sub(cr_row_vn(w, r, 0, r->n), r->target[0]),
                           cr_add(cr_mul(r->k11, a1), cr_mul(r->k12, a2)));
@@ -561,7 +561,7 @@ static void cr_unknown_dir(const cr_impact_row *r, int kind, cr_v2 *d,
         *lb = r->lb[kind];
     } else {
         cr_v2 t = cr_vright(r->n), ra, rb;
-        if (kind == 2) {
+        if (CR_TWO_POINTS && kind == 2) {
             ra = cr_vscale(0.5f, cr_vadd(r->ra[0], r->ra[1]));
             rb = cr_vscale(0.5f, cr_vadd(r->rb[0], r->rb[1]));
         } else {
@@ -642,7 +642,7 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
             }
 #if CAROM_ENABLE_FRICTION
         if (cr_gt(r->friction, 0.0f)) {
-            if (r->count == 2) {
+            if (CR_TWO_POINTS && r->count == 2) {
                 float limit = cr_mul(r->friction, cr_add(r->pn[0], r->pn[1]));
                 if (cr_lt(cr_abs(cr_add(r->pt[0], r->pt[1])), limit)) {
                     if (m == M)
@@ -730,7 +730,7 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
     }
     for (i = 0; i < m; ++i) {
         const cr_impact_row *r = &rows[U_ROW(i)];
-        float pn0 = r->pn[0], pn1 = r->count == 2 ? r->pn[1] : 0.0f, pt;
+        float pn0 = r->pn[0], pn1 = CR_TWO_POINTS && r->count == 2 ? r->pn[CR_MANIFOLD_POINTS - 1] : 0.0f, pt;
         if (U_KIND(i) < 2)
             continue;
         for (j = 0; j < m; ++j) {
@@ -741,8 +741,8 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
             else
                 pn1 = cr_add(pn1, x[j]);
         }
-        if (U_KIND(i) == 2)
-            pt = cr_add(cr_add(r->pt[0], r->pt[1]), x[i]);
+        if (CR_TWO_POINTS && U_KIND(i) == 2)
+            pt = cr_add(cr_add(r->pt[0], r->pt[CR_MANIFOLD_POINTS - 1]), x[i]);
         else
             pt = cr_add(r->pt[U_KIND(i) - 3], x[i]);
         if (cr_gt(cr_abs(pt), cr_mul(r->friction, U_KIND(i) == 2 ? cr_add(pn0, pn1) : pn0)))
@@ -762,7 +762,7 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
     }
     for (i = 0; i < m; ++i) {
         cr_impact_row *r = &rows[U_ROW(i)];
-        if (U_KIND(i) == 2) {
+        if (CR_TWO_POINTS && U_KIND(i) == 2) {
             float pt = cr_add(cr_add(r->pt[0], r->pt[1]), x[i]);
             float pn = cr_add(r->pn[0], r->pn[1]);
             r->pt[0] = cr_mul(cr_gt(pn, 0.0f) ? cr_div(r->pn[0], pn) : 0.5f, pt);
@@ -882,7 +882,7 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
         r->lb[j] = cr_lever_n(w, p->b, r->rb[j], m.n);
     }
     r->block = 0;
-    if (m.count == 2) {
+    if (CR_TWO_POINTS && m.count == 2) {
         float lin = cr_add(A->inv_m, B->inv_m), det;
         r->k11 = cr_add(lin, cr_add(cr_mul(A->inv_I, cr_mul(r->la[0], r->la[0])),
                                     cr_mul(B->inv_I, cr_mul(r->lb[0], r->lb[0]))));

@@ -259,7 +259,7 @@ typedef struct cr_rows_ctx {
     cr_v2 *va, *vb;
     float *wa, *wb;
     float ima, imb, iia, iib;
-    float la[CAROM_MAX_MANIFOLD_POINTS], lb[CAROM_MAX_MANIFOLD_POINTS];
+    float la[CR_MANIFOLD_POINTS], lb[CR_MANIFOLD_POINTS];
 } cr_rows_ctx;
 
 static void cr_rows_levers(const carom_world *w, const cr_contact *c, cr_rows_ctx *x)
@@ -299,7 +299,7 @@ static void cr_normal_rows(cr_rows_ctx *x, const cr_contact *c, float *acc,
                            const float *bias, const float *vn)
 {
     int k;
-    if (c->count == 2 && c->block) {
+    if (CR_TWO_POINTS && c->count == 2 && c->block) {
         float a1 = acc[0], a2 = acc[1], x1, x2;
         float b1 = cr_sub(cr_add(vn[0], bias[0]),
                           cr_add(cr_mul(c->k11, a1), cr_mul(c->k12, a2)));
@@ -428,8 +428,8 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
                               int first)
 {
     const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
-    float bias[CAROM_MAX_MANIFOLD_POINTS], vn[CAROM_MAX_MANIFOLD_POINTS];
-    float acc[CAROM_MAX_MANIFOLD_POINTS];
+    float bias[CR_MANIFOLD_POINTS], vn[CR_MANIFOLD_POINTS];
+    float acc[CR_MANIFOLD_POINTS];
     cr_rows_ctx x;
     int k;
     cr_rows_of_velocity(w, c, &x);
@@ -460,7 +460,7 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
         c->pts[k].max_pn = cr_max(c->pts[k].max_pn, acc[k]);
     }
 #if CAROM_ENABLE_FRICTION
-    if (cr_gt(c->friction, 0.0f) && c->count == 2) {
+    if (CR_TWO_POINTS && cr_gt(c->friction, 0.0f) && c->count == 2) {
         cr_solve_friction_pair(w, c);
     } else if (cr_gt(c->friction, 0.0f)) {
         cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
@@ -553,7 +553,7 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
         for (i = 0; i < w->solve_count; ++i) {
             cr_contact *c = &w->contacts[w->solve_order[i]];
             const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
-            float bias[CAROM_MAX_MANIFOLD_POINTS], vn[CAROM_MAX_MANIFOLD_POINTS];
+            float bias[CR_MANIFOLD_POINTS], vn[CR_MANIFOLD_POINTS];
             int any = 0;
             if (!(c->flags & CR_CONTACT_SOLVE))
                 continue;
@@ -570,7 +570,7 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
             if (!any && it == 0)
                 continue;
             {
-                float acc[CAROM_MAX_MANIFOLD_POINTS];
+                float acc[CR_MANIFOLD_POINTS];
                 cr_rows_ctx x;
                 cr_rows_of_pseudo(w, c, &x);
                 for (k = 0; k < c->count; ++k)
@@ -887,7 +887,7 @@ void cr_solver_prime(carom_world *w, const cr_substep *s)
                 int warm = 0, j;
                 for (j = 0; j < c->count; ++j)
                     warm |= !cr_eq(c->pts[j].pn, 0.0f);
-                if (!warm && c->count == 2) {
+                if (CR_TWO_POINTS && !warm && c->count == 2) {
                     /* lever rule about u's centre along the face */
                     cr_v2 t = cr_vright(c->n);
                     float d1 = cr_vdot(u == c->a ? c->pts[0].ra : c->pts[0].rb, t);
@@ -928,7 +928,7 @@ static int cr_one_sided(const carom_world *w, const cr_contact *c, int u,
                         const float *err, float *x)
 {
     const cr_body *U = &w->bodies[u];
-    float l[CAROM_MAX_MANIFOLD_POINTS], kk[CAROM_MAX_MANIFOLD_POINTS];
+    float l[CR_MANIFOLD_POINTS], kk[CR_MANIFOLD_POINTS];
     int j, any = 0;
     for (j = 0; j < c->count; ++j) {
         cr_v2 r = u == c->b ? c->pts[j].rb : c->pts[j].ra;
@@ -939,7 +939,7 @@ static int cr_one_sided(const carom_world *w, const cr_contact *c, int u,
     }
     if (!any)
         return 0;
-    if (c->count == 2) {
+    if (CR_TWO_POINTS && c->count == 2) {
         float k12 = cr_add(U->inv_m, cr_mul(U->inv_I, cr_mul(l[0], l[1])));
         float det = cr_sub(cr_mul(kk[0], kk[1]), cr_mul(k12, k12));
         if (cr_gt(det, cr_mul(1.0e-3f, cr_mul(kk[0], kk[1]))) &&
@@ -997,7 +997,7 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
                 const cr_body *U = &w->bodies[u];
                 const cr_body *L = &w->bodies[u == c->b ? c->a : c->b];
                 float sign = u == c->b ? 1.0f : -1.0f;
-                float err[CAROM_MAX_MANIFOLD_POINTS], x[CAROM_MAX_MANIFOLD_POINTS];
+                float err[CR_MANIFOLD_POINTS], x[CR_MANIFOLD_POINTS];
                 int n;
                 for (j = 0; j < c->count; ++j) {
                     const cr_contact_point *cp = &c->pts[j];
@@ -1016,7 +1016,7 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
                 n = cr_one_sided(w, c, u, err, x);
                 for (j = 0; j < n; ++j)
                     cr_push_up(w, c, u, j, x[j], 0);
-                if (n == 1 && c->count == 2) {
+                if (CR_TWO_POINTS && n == 1 && c->count == 2) {
                     /* sequential: the second point after the first */
                     const cr_contact_point *cp = &c->pts[1];
                     cr_v2 ru = u == c->b ? cp->rb : cp->ra;
@@ -1058,7 +1058,7 @@ static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap)
                 const cr_contact *c = &w->contacts[p->contact];
                 const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
                 float sign = u == c->b ? 1.0f : -1.0f;
-                float err[CAROM_MAX_MANIFOLD_POINTS], x[CAROM_MAX_MANIFOLD_POINTS];
+                float err[CR_MANIFOLD_POINTS], x[CR_MANIFOLD_POINTS];
                 int n;
                 for (j = 0; j < c->count; ++j) {
                     float sep = cr_current_sep(c, &c->pts[j], sa, sb);

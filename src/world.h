@@ -57,12 +57,12 @@ typedef struct cr_impact_row {
     cr_v2 n;
     int count;
     float friction, restitution;
-    cr_v2 ra[CAROM_MAX_MANIFOLD_POINTS], rb[CAROM_MAX_MANIFOLD_POINTS];
-    float mass_n[CAROM_MAX_MANIFOLD_POINTS], mass_t[CAROM_MAX_MANIFOLD_POINTS];
-    float target[CAROM_MAX_MANIFOLD_POINTS]; /* normal velocity aimed for */
+    cr_v2 ra[CR_MANIFOLD_POINTS], rb[CR_MANIFOLD_POINTS];
+    float mass_n[CR_MANIFOLD_POINTS], mass_t[CR_MANIFOLD_POINTS];
+    float target[CR_MANIFOLD_POINTS]; /* normal velocity aimed for */
     float approach;                          /* fastest approach before */
-    float pn[CAROM_MAX_MANIFOLD_POINTS], pt[CAROM_MAX_MANIFOLD_POINTS];
-    float la[CAROM_MAX_MANIFOLD_POINTS], lb[CAROM_MAX_MANIFOLD_POINTS];
+    float pn[CR_MANIFOLD_POINTS], pt[CR_MANIFOLD_POINTS];
+    float la[CR_MANIFOLD_POINTS], lb[CR_MANIFOLD_POINTS];
                      /* normal lever arms r x n (0 for circles) */
     float k11, k12, k22; /* 2 points: the normal effective-mass matrix */
     int block;       /* 2 points solved as one 2x2 problem */
