@@ -227,15 +227,19 @@ int cr_accel_in_range(const cr_body_info *info, cr_v2 force, float torque)
 static carom_status cr_shape_build(const carom_body_def *def, cr_shape *s,
                                    float *area, float *unit_inertia)
 {
+#if CAROM_ENABLE_POLYGONS
     int i;
+#endif
     s->kind = def->shape;
     s->radius = 0.0f;
     s->count = 0;
     s->local_center = cr_v(0.0f, 0.0f);
+#if CAROM_ENABLE_POLYGONS
     for (i = 0; i < CAROM_MAX_POLYGON_VERTICES; ++i) {
         s->verts[i] = cr_v(0.0f, 0.0f);
         s->norms[i] = cr_v(0.0f, 0.0f);
     }
+#endif
     if (def->shape == CAROM_SHAPE_CIRCLE) {
         float r = def->radius;
         if (!cr_ge(r, CAROM_LIMIT_MIN_SIZE) || !cr_le(r, CAROM_LIMIT_MAX_LENGTH))
@@ -441,6 +445,7 @@ void cr_shape_box(const cr_shape *s, cr_v2 x, cr_rot q, cr_box *out)
         out->lo_y = cr_sub(x.y, s->radius);
         out->hi_y = cr_add(x.y, s->radius);
     } else {
+#if CAROM_ENABLE_POLYGONS
         int i;
         cr_v2 p = cr_vadd(x, cr_rotate(q, s->verts[0]));
         out->lo_x = out->hi_x = p.x;
@@ -452,5 +457,8 @@ void cr_shape_box(const cr_shape *s, cr_v2 x, cr_rot q, cr_box *out)
             out->lo_y = cr_min(out->lo_y, p.y);
             out->hi_y = cr_max(out->hi_y, p.y);
         }
+#else
+        (void)q; /* (every shape is a circle) */
+#endif
     }
 }

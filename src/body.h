@@ -61,8 +61,10 @@ typedef struct cr_shape {
     float size;         /* equivalent radius sqrt(area / pi): the body's
                            contribution to the world's length unit */
     cr_v2 local_center; /* centre of mass in the definition's frame */
+#if CAROM_ENABLE_POLYGONS
     cr_v2 verts[CAROM_MAX_POLYGON_VERTICES]; /* counter-clockwise */
     cr_v2 norms[CAROM_MAX_POLYGON_VERTICES]; /* outward unit edge normals */
+#endif
 } cr_shape;
 
 /* Cold data: set when the body is made (and by the setters). */

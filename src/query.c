@@ -11,6 +11,7 @@
 #if CAROM_ENABLE_QUERIES
 
 /* World vertex i and outward normal i of polygon body slot s. */
+#if CAROM_ENABLE_POLYGONS
 static cr_v2 cr_vertex(const cr_body *b, const cr_shape *sh, int i)
 {
     return cr_vadd(b->x, cr_rotate(b->q, sh->verts[i]));
@@ -20,6 +21,23 @@ static cr_v2 cr_normal(const cr_body *b, const cr_shape *sh, int i)
 {
     return cr_rotate(b->q, sh->norms[i]);
 }
+#else
+/* (no polygons: never called; the shape has no vertices) */
+static cr_v2 cr_vertex(const cr_body *b, const cr_shape *sh, int i)
+{
+    (void)sh;
+    (void)i;
+    return b->x;
+}
+
+static cr_v2 cr_normal(const cr_body *b, const cr_shape *sh, int i)
+{
+    (void)b;
+    (void)sh;
+    (void)i;
+    return cr_v(1.0f, 0.0f);
+}
+#endif
 
 typedef struct cr_grid_visit {
     const carom_world *w;
