@@ -425,7 +425,7 @@ static float cr_approach_before(const carom_world *w, const cr_contact *c,
 }
 
 static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s,
-                              int first)
+                              int first, int cached)
 {
     const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
     float bias[CR_MANIFOLD_POINTS], vn[CR_MANIFOLD_POINTS];
@@ -434,8 +434,13 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
     int k;
     cr_rows_of_velocity(w, c, &x);
     for (k = 0; k < c->count; ++k) {
-        const cr_contact_point *p = &c->pts[k];
-        float sep = cr_current_sep(c, p, sa, sb);
+        cr_contact_point *p = &c->pts[k];
+        /* the separation of the poses: the same in every sweep of a
+         * solve (velocities change, positions do not), so the first
+         * sweep keeps it in pp, the position sweep's scratch, free
+         * until that sweep starts again from zero */
+        float sep = cached ? p->pp : cr_current_sep(c, p, sa, sb);
+        p->pp = sep;
         bias[k] = 0.0f;
         if (cr_gt(sep, 0.0f)) {
             if (first) {
@@ -494,8 +499,9 @@ void cr_solver_solve(carom_world *w, const cr_substep *s, int first,
             cr_contact *c = &w->contacts[w->solve_order[i]];
             /* an impact inside the substep may have made it one */
             if (c->flags & CR_CONTACT_SOLVE)
-                cr_solve_velocity(w, c, s, first && it == 0);
+                cr_solve_velocity(w, c, s, first && it == 0, it > 0);
         }
+    w->sep_cached = iterations > 0;
 }
 
 /* ---- positions ---------------------------------------------------------------- */
@@ -544,6 +550,7 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
 {
     int it, i, k;
     float cap = cr_mul(s->push, s->h);
+    w->sep_cached = 0; /* pp is this sweep's again */
     for (i = 0; i < w->active_count; ++i) {
         cr_solver_body *sb = &w->sbody[w->active[i]];
         sb->vp = cr_v(0.0f, 0.0f);
@@ -617,6 +624,7 @@ void cr_solver_set_drifts(carom_world *w, const cr_substep *s)
 void cr_solver_update_deltas(carom_world *w)
 {
     int i;
+    w->sep_cached = 0; /* the poses moved */
     for (i = 0; i < w->active_count; ++i) {
         int id = w->active[i];
         cr_solver_body *sb = &w->sbody[id];
@@ -647,6 +655,7 @@ static int cr_bounces(const carom_world *w, const cr_contact *c,
 int cr_solver_restitution(carom_world *w)
 {
     int i, k, it, bounced = 0;
+    w->sep_cached = 0;
     /* the bounce impulse of each point, in the position correction's
      * scratch (pp, done by now); it is not kept for the warm start, which
      * is last step's support of a resting contact, not its bounce */
@@ -1003,7 +1012,7 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
                     const cr_contact_point *cp = &c->pts[j];
                     cr_v2 ru = u == c->b ? cp->rb : cp->ra;
                     cr_v2 rl = u == c->b ? cp->ra : cp->rb;
-                    float sep = cr_current_sep(c, cp, sa, sb);
+                    float sep = w->sep_cached ? cp->pp : cr_current_sep(c, cp, sa, sb);
                     float bias = cr_gt(sep, 0.0f) ? cr_mul(sep, s->inv_h) : 0.0f;
                     /* point velocities along the normal, from below up */
                     float vu = cr_mul(sign, cr_vdot(cr_point_velocity(U->v, U->w, ru), c->n));

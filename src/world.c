@@ -322,6 +322,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->solve_count = 0;
     w->support = CR_AT(support, int);
     w->support_count = 0;
+    w->sep_cached = 0;
     w->drift = CR_AT(drift, cr_drift);
     w->heap = CR_AT(heap, cr_heap_entry);
     w->heap_count = 0;

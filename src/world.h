@@ -123,6 +123,9 @@ struct carom_world {
     int *support;             /* supported bodies, bottom up (breadth first
                                  from the static ones) */
     int support_count;
+    int sep_cached;           /* every solved point's separation at the
+                                 current poses is in its pp (no position
+                                 changed since the last velocity sweep) */
 
     /* events methods */
     cr_drift *drift;
