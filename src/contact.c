@@ -179,10 +179,7 @@ static void cr_contact_fill(carom_world *w, cr_contact *c, const cr_pair *pr,
     const cr_body *A = &w->bodies[pr->a], *B = &w->bodies[pr->b];
     const cr_body *A0 = &w->backup[pr->a], *B0 = &w->backup[pr->b];
     cr_v2 dpa = cr_vsub(A->x, A0->x), dpb = cr_vsub(B->x, B0->x);
-    cr_rot dqa = cr_r(cr_add(cr_mul(A->q.c, A0->q.c), cr_mul(A->q.s, A0->q.s)),
-                      cr_sub(cr_mul(A->q.s, A0->q.c), cr_mul(A->q.c, A0->q.s)));
-    cr_rot dqb = cr_r(cr_add(cr_mul(B->q.c, B0->q.c), cr_mul(B->q.s, B0->q.s)),
-                      cr_sub(cr_mul(B->q.s, B0->q.c), cr_mul(B->q.c, B0->q.s)));
+    cr_rot dqa = cr_anchor_turn(A, A0), dqb = cr_anchor_turn(B, B0);
     int k;
     cr_contact_from_manifold(w, c, m);
     /* the solver measures separation from the step start: count the

@@ -630,9 +630,7 @@ void cr_solver_update_deltas(carom_world *w)
         cr_solver_body *sb = &w->sbody[id];
         const cr_body *b = &w->bodies[id], *b0 = &w->backup[id];
         sb->dp = cr_vsub(b->x, b0->x);
-        /* q q0^-1 */
-        sb->dq = cr_r(cr_add(cr_mul(b->q.c, b0->q.c), cr_mul(b->q.s, b0->q.s)),
-                      cr_sub(cr_mul(b->q.s, b0->q.c), cr_mul(b->q.c, b0->q.s)));
+        sb->dq = cr_anchor_turn(b, b0);
     }
 }
 
