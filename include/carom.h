@@ -11,6 +11,10 @@
  *  - Memory: the caller owns all of it. Ask carom_world_buffer_size() how
  *    many bytes a world needs, hand that buffer to carom_world_init(), and
  *    keep it alive as long as the world. The library never calls malloc.
+ *    A program that can give more memory sets carom_world_def.grow: a step
+ *    that would need more candidate pairs or contacts than the capacities
+ *    asks it for a larger block and is taken again, instead of failing
+ *    (then call carom_world_release() before dropping the buffer).
  *  - Definitions: worlds and bodies are made from definition structs that
  *    start from carom_default_world_def() / carom_default_body_def(), so new
  *    fields never break callers and every default is written down once.
@@ -185,6 +189,18 @@ typedef struct carom_ray_hit {
 /** Query callback: one body found; return 0 to stop the query. */
 typedef int (*carom_query_fn)(void *ctx, int body);
 
+/**
+ * Memory on demand (carom_world_def.grow): alloc returns `bytes` bytes
+ * (any alignment) or NULL; release takes back what alloc gave. The library
+ * calls them only inside carom_world_step() and carom_world_release(), and
+ * holds at most one block at a time.
+ */
+typedef struct carom_allocator {
+    void *(*alloc)(void *user, size_t bytes);
+    void (*release)(void *user, void *block);
+    void *user;
+} carom_allocator;
+
 typedef struct carom_world_def {
     carom_vec2 gravity;       /**< m/s^2, default (0, -10) */
     float dt;                 /**< fixed step, s, in [CAROM_LIMIT_MIN_DT,
@@ -241,6 +257,20 @@ typedef struct carom_world_def {
                                    (CAROM_DEFAULT_TOUCH_EVENTS_PER_BODY x
                                    max_bodies, at least CAROM_MIN_EVENTS);
                                    more are counted as dropped */
+    carom_allocator grow;     /**< optional (both functions or none;
+                                   default none): when a step needs more
+                                   candidate pairs or contacts than
+                                   max_pairs / max_contacts, the world
+                                   takes a block twice as large from
+                                   grow.alloc, moves its pair and contact
+                                   arrays there and takes the step again,
+                                   from the same state (the discrete
+                                   method's result is that of the larger
+                                   capacities from the start).
+                                   Without it, or if alloc returns NULL,
+                                   the step fails with
+                                   CAROM_ERR_PAIR_CAPACITY or
+                                   CAROM_ERR_CONTACT_CAPACITY */
 } carom_world_def;
 
 typedef struct carom_body_def {
@@ -481,9 +511,20 @@ carom_status carom_body_set_filter(carom_world *w, int id, uint32_t category,
 /**
  * Advance the world by one dt. On any status but CAROM_OK the bodies,
  * contacts, counters and time are exactly as before the call (the step is
- * rolled back); only the event list then holds no events.
+ * rolled back); only the event list then holds no events. With
+ * carom_world_def.grow set, a step short of pair or contact capacity grows
+ * the world's arrays (see there) and is taken again.
  */
 carom_status carom_world_step(carom_world *w);
+
+/**
+ * Give back the memory the world took through carom_world_def.grow (none:
+ * nothing happens). The world returns to the capacities of its own buffer
+ * and stays usable; the last step's warm starts and touching pairs are kept
+ * if they fit, else dropped. Call it before freeing the buffer of a world
+ * made with grow set.
+ */
+void carom_world_release(carom_world *w);
 
 carom_status carom_world_set_method(carom_world *w, carom_method method);
 carom_method carom_world_get_method(const carom_world *w);
@@ -584,6 +625,8 @@ typedef struct carom_stats {
                                 impact solve (CAROM_IMPACT_ROWS_MAX) */
     int awake_bodies;    /**< bodies simulated in the last step */
     int contacts;        /**< contacts in the last step */
+    int grows;           /**< times a step took a larger pool from
+                              carom_world_def.grow */
 } carom_stats;
 
 carom_status carom_world_get_stats(const carom_world *w, carom_stats *out);

@@ -64,6 +64,9 @@ carom_world_def carom_default_world_def(void)
     d.force_fn = 0;
     d.force_user = 0;
     d.max_touch_events = 0;
+    d.grow.alloc = 0;
+    d.grow.release = 0;
+    d.grow.user = 0;
     return d;
 }
 
@@ -112,6 +115,8 @@ carom_status carom_world_def_validate(const carom_world_def *d)
     if (d->force_fn)
         return CAROM_ERR_DISABLED;
 #endif
+    if (!d->grow.alloc != !d->grow.release)
+        return CAROM_ERR_BAD_PARAMETER; /* both or neither */
     return cr_method_available(d->method);
 }
 
@@ -166,11 +171,16 @@ static void cr_caps_of(const carom_world_def *d, cr_caps *c)
 #endif
 }
 
+/* The world in its buffer: the header and the per-body arrays, then the
+ * pool of the arrays that follow the pair, contact and event capacities
+ * (l->pool on, l->total - CR_ALIGN - l->pool bytes long). A world that
+ * grows (carom_world_def.grow) moves only the pool, to a block of its own. */
 typedef struct cr_layout {
     size_t world, bodies, backup, info, boxes, awake, sbody, drift, mark, island,
         island_v, island_w, regrown, pair_head, proxies, ptmp, start, count,
-        pairs, pair_tmp, contacts, solve_order, support, warm, heap, rows,
-        direct_k, direct_x, direct_u, events, touch, touch_next, touch_events, active, total;
+        support, active, pool, pairs, pair_tmp, contacts, solve_order, warm, heap,
+        rows, direct_k, direct_x, direct_u, events, touch, touch_next, touch_events,
+        total;
 } cr_layout;
 
 static size_t cr_round_up(size_t n) { return (n + CR_ALIGN - 1u) & ~(size_t)(CR_ALIGN - 1u); }
@@ -207,6 +217,9 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     CR_PLACE(proxies, c->bodies, cr_proxy);
     CR_PLACE(start, c->buckets + 1, int);
     CR_PLACE(count, c->bodies + 1, int);
+    CR_PLACE(support, c->bodies, int);
+    CR_PLACE(active, c->bodies, int);
+    l->pool = at;
     CR_PLACE(pairs, c->pairs, cr_pair);
     CR_PLACE(contacts, c->contacts, cr_contact);
     /* the pair sort's scratch (and the touch sort's, at the step's end) is
@@ -224,7 +237,6 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     else
         CR_PLACE(ptmp, c->bodies, cr_proxy);
     CR_PLACE(solve_order, c->contacts, int);
-    CR_PLACE(support, c->bodies, int);
     CR_PLACE(warm, c->contacts, cr_warm);
     CR_PLACE(heap, c->heap, cr_heap_entry);
     CR_PLACE(rows, c->rows, cr_impact_row);
@@ -235,12 +247,44 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     CR_PLACE(touch, c->touches, cr_touch);
     CR_PLACE(touch_next, c->touches, cr_touch);
     CR_PLACE(touch_events, c->touch_events, carom_touch_event);
-    CR_PLACE(active, c->bodies, int);
 #undef CR_PLACE
     if (at > limit)
         return 0;
     l->total = at + CR_ALIGN; /* slack to align any caller buffer */
     return 1;
+}
+
+/* Point the world's pool arrays into `pool` (laid out as l's pool) and
+ * take c's capacities. */
+static void cr_pool_assign(carom_world *w, unsigned char *pool, const cr_caps *c,
+                           const cr_layout *l)
+{
+#define CR_PAT(field, type) ((type *)(void *)(pool + (l->field - l->pool)))
+    w->pairs = CR_PAT(pairs, cr_pair);
+    w->pair_tmp = CR_PAT(pair_tmp, cr_pair);
+    w->bp.tmp = CR_PAT(ptmp, cr_proxy);
+    w->contacts = CR_PAT(contacts, cr_contact);
+    w->solve_order = CR_PAT(solve_order, int);
+    w->warm = CR_PAT(warm, cr_warm);
+    w->heap = CR_PAT(heap, cr_heap_entry);
+    w->rows = CR_PAT(rows, cr_impact_row);
+    w->direct_k = CR_PAT(direct_k, float);
+    w->direct_x = CR_PAT(direct_x, float);
+    w->direct_u = CR_PAT(direct_u, int);
+    w->events = CR_PAT(events, carom_event);
+    w->touch = CR_PAT(touch, cr_touch);
+    w->touch_next = CR_PAT(touch_next, cr_touch);
+    w->touch_events = CR_PAT(touch_events, carom_touch_event);
+#undef CR_PAT
+    w->def.max_pairs = c->pairs;
+    w->def.max_contacts = c->contacts;
+    w->def.max_events = c->events;
+    w->heap_cap = c->heap;
+    w->row_cap = c->rows;
+    w->direct_cap = c->direct;
+    w->touch_cap = c->touches;
+    w->max_touch_events = c->touch_events;
+    w->def.max_touch_events = c->touch_events;
 }
 
 size_t carom_world_buffer_size(const carom_world_def *def)
@@ -282,9 +326,11 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w = (carom_world *)(void *)(base + l.world);
 #define CR_AT(field, type) ((type *)(void *)(base + l.field))
     w->def = *def;
-    w->def.max_pairs = c.pairs;
-    w->def.max_contacts = c.contacts;
-    w->def.max_events = c.events;
+    w->pool_mem = 0;
+    w->buf_pool = base + l.pool;
+    w->buf_pairs = c.pairs;
+    w->buf_contacts = c.contacts;
+    cr_pool_assign(w, w->buf_pool, &c, &l);
     w->def.max_impacts = c.impacts;
     w->method = def->method;
     w->steps = 0;
@@ -298,7 +344,6 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->awake_count = 0;
     w->boxes = CR_AT(boxes, cr_box);
     w->bp.proxies = CR_AT(proxies, cr_proxy);
-    w->bp.tmp = CR_AT(ptmp, cr_proxy);
     w->bp.start = CR_AT(start, int);
     w->bp.count = CR_AT(count, int);
     w->bp.capacity = c.bodies;
@@ -309,24 +354,17 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->bp.xbits = 0;
     w->bp.xmask = w->bp.ymask = 0u;
     w->bp.cell = w->bp.inv_cell = 1.0f;
-    w->pairs = CR_AT(pairs, cr_pair);
-    w->pair_tmp = CR_AT(pair_tmp, cr_pair);
     w->pair_count = 0;
     w->pair_head = CR_AT(pair_head, int);
-    w->contacts = CR_AT(contacts, cr_contact);
     w->contact_count = 0;
-    w->warm = CR_AT(warm, cr_warm);
     w->warm_count = 0;
     w->sbody = CR_AT(sbody, cr_solver_body);
-    w->solve_order = CR_AT(solve_order, int);
     w->solve_count = 0;
     w->support = CR_AT(support, int);
     w->support_count = 0;
     w->sep_cached = 0;
     w->drift = CR_AT(drift, cr_drift);
-    w->heap = CR_AT(heap, cr_heap_entry);
     w->heap_count = 0;
-    w->heap_cap = c.heap;
     w->mark = CR_AT(mark, int);
     w->mark_stamp = 0;
     w->island = CR_AT(island, int);
@@ -335,28 +373,15 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->island_cap = c.island;
     w->regrown = CR_AT(regrown, int);
     w->regrown_count = 0;
-    w->rows = CR_AT(rows, cr_impact_row);
-    w->row_cap = c.rows;
-    w->direct_k = CR_AT(direct_k, float);
-    w->direct_x = CR_AT(direct_x, float);
-    w->direct_u = CR_AT(direct_u, int);
-    w->direct_cap = c.direct;
     w->impacts_this_step = 0;
     w->budget_hit = 0;
-    w->events = CR_AT(events, carom_event);
     w->event_count = 0;
     w->events_dropped = 0;
     w->error_body = -1;
     w->profile = 0;
-    w->touch = CR_AT(touch, cr_touch);
-    w->touch_next = CR_AT(touch_next, cr_touch);
     w->touch_count = 0;
-    w->touch_cap = c.touches;
-    w->touch_events = CR_AT(touch_events, carom_touch_event);
     w->touch_event_count = 0;
     w->touch_events_dropped = 0;
-    w->max_touch_events = c.touch_events;
-    w->def.max_touch_events = c.touch_events;
     w->grid_valid = 0;
     w->escaped_count = 0;
     w->sensor_count = 0;
@@ -826,13 +851,11 @@ static carom_status cr_step(carom_world *w)
     return CAROM_OK;
 }
 
-carom_status carom_world_step(carom_world *w)
+static carom_status cr_step_taken(carom_world *w)
 {
     carom_status st;
     carom_stats saved;
     int i;
-    if (!w)
-        return CAROM_ERR_NULL;
     for (i = 0; i < w->slot_count; ++i)
         w->backup[i] = w->bodies[i];
     saved = w->stats;
@@ -886,6 +909,106 @@ carom_status carom_world_step(carom_world *w)
     }
 #endif
     return CAROM_OK;
+}
+
+/* ---- growing ------------------------------------------------------------------ */
+
+/* Move the pool to new capacities in `pool` (a block of l's pool size, or
+ * the buffer's own pool): the last step's warm starts and touching pairs
+ * go along if they fit; everything else in the pool is the next step's. */
+static void cr_pool_move(carom_world *w, unsigned char *pool, const cr_caps *c,
+                         const cr_layout *l)
+{
+    const cr_warm *warm = w->warm;
+    const cr_touch *touch = w->touch;
+    cr_warm *nw = (cr_warm *)(void *)(pool + (l->warm - l->pool));
+    cr_touch *nt = (cr_touch *)(void *)(pool + (l->touch - l->pool));
+    int i;
+    if (w->warm_count > c->contacts)
+        w->warm_count = 0;
+    if (w->touch_count > c->touches)
+        w->touch_count = 0;
+    /* (the old and new pools never overlap: one of them is a block) */
+    for (i = 0; i < w->warm_count; ++i)
+        nw[i] = warm[i];
+    for (i = 0; i < w->touch_count; ++i)
+        nt[i] = touch[i];
+    cr_pool_assign(w, pool, c, l);
+    w->pair_count = 0;
+    w->contact_count = 0;
+    w->heap_count = 0;
+    w->event_count = 0;
+    w->touch_event_count = 0;
+}
+
+/* A step fell short of capacity `st`: take a pool with twice as much from
+ * the program's allocator. 0 if there is none, it gives nothing, or the
+ * capacity is at its limit. */
+static int cr_grow(carom_world *w, carom_status st)
+{
+    carom_world_def nd = w->def;
+    cr_caps c;
+    cr_layout l;
+    size_t bytes;
+    void *block;
+    unsigned char *pool;
+    if (!w->def.grow.alloc)
+        return 0;
+    if (st == CAROM_ERR_PAIR_CAPACITY) {
+        if (nd.max_pairs >= CR_MAX_CAPACITY)
+            return 0;
+        nd.max_pairs = nd.max_pairs > CR_MAX_CAPACITY / 2 ? CR_MAX_CAPACITY : 2 * nd.max_pairs;
+    } else {
+        if (nd.max_contacts >= CR_MAX_CAPACITY)
+            return 0;
+        nd.max_contacts = nd.max_contacts > CR_MAX_CAPACITY / 2 ? CR_MAX_CAPACITY
+                                                               : 2 * nd.max_contacts;
+    }
+    cr_caps_of(&nd, &c);
+    if (!cr_layout_of(&c, &l))
+        return 0;
+    bytes = l.total - l.pool; /* the pool, and CR_ALIGN of slack */
+    block = w->def.grow.alloc(w->def.grow.user, bytes);
+    if (!block)
+        return 0;
+    pool = (unsigned char *)block +
+           ((CR_ALIGN - ((size_t)block & (CR_ALIGN - 1u))) & (CR_ALIGN - 1u));
+    cr_pool_move(w, pool, &c, &l);
+    if (w->pool_mem)
+        w->def.grow.release(w->def.grow.user, w->pool_mem);
+    w->pool_mem = block;
+    ++w->stats.grows;
+    return 1;
+}
+
+carom_status carom_world_step(carom_world *w)
+{
+    carom_status st;
+    if (!w)
+        return CAROM_ERR_NULL;
+    for (;;) {
+        st = cr_step_taken(w);
+        if ((st != CAROM_ERR_PAIR_CAPACITY && st != CAROM_ERR_CONTACT_CAPACITY) ||
+            !cr_grow(w, st))
+            return st;
+    }
+}
+
+void carom_world_release(carom_world *w)
+{
+    carom_world_def nd;
+    cr_caps c;
+    cr_layout l;
+    if (!w || !w->pool_mem)
+        return;
+    nd = w->def;
+    nd.max_pairs = w->buf_pairs;
+    nd.max_contacts = w->buf_contacts;
+    cr_caps_of(&nd, &c);
+    (void)cr_layout_of(&c, &l); /* (it fitted the buffer at init) */
+    cr_pool_move(w, w->buf_pool, &c, &l);
+    w->def.grow.release(w->def.grow.user, w->pool_mem);
+    w->pool_mem = 0;
 }
 
 /* ---- results --------------------------------------------------------------------- */

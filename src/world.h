@@ -171,6 +171,14 @@ struct carom_world {
     int sensor_count;         /* sensor bodies in the world */
 
     carom_profile *profile;   /* attached counters, or NULL */
+
+    /* memory: the pool arrays (pairs, contacts, heap, rows, events,
+     * touches) are in the caller's buffer at buf_pool, for buf_pairs pairs
+     * and buf_contacts contacts, or, once the world grew
+     * (carom_world_def.grow), in pool_mem, a block of grow.alloc's */
+    void *pool_mem;
+    unsigned char *buf_pool;
+    int buf_pairs, buf_contacts;
 };
 
 /* The bodies that left their grid box during the step, after it (the

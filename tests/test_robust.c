@@ -262,7 +262,7 @@ static int run_scene_text(const char *text, carom_method m, int steps, char *msg
             ck_assert_msg(finite_state(&b), "body %d not finite after step %d", i, k);
         }
     }
-    free(mem);
+    scene_free_world(w, mem);
     scene_free(&s);
     return rc;
 }

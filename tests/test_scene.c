@@ -203,7 +203,7 @@ START_TEST(test_scene_spec_example_builds_a_world)
     ck_assert_int_eq(carom_world_body_count(w), 3);
     ck_assert_int_eq(carom_body_get_mass(w, 2, &m, &inertia), CAROM_OK);
     ck_assert_close(m, 2.0, 1e-6);
-    free(mem);
+    scene_free_world(w, mem);
     scene_free(&s);
 }
 END_TEST

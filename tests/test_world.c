@@ -189,6 +189,137 @@ START_TEST(test_pair_capacity_overflow_is_reported)
 }
 END_TEST
 
+/* An allocator for carom_world_def.grow that counts what it gives and
+ * takes back, and can be told to refuse. */
+typedef struct grow_count {
+    int blocks, allocs, refuse;
+} grow_count;
+
+static void *grow_alloc(void *user, size_t bytes)
+{
+    grow_count *g = (grow_count *)user;
+    if (g->refuse)
+        return NULL;
+    ++g->blocks;
+    ++g->allocs;
+    return malloc(bytes);
+}
+
+static void grow_release(void *user, void *block)
+{
+    grow_count *g = (grow_count *)user;
+    --g->blocks;
+    free(block);
+}
+
+/* A pile of 40 circles and boxes dropped on a floor, discrete method,
+ * capacities (max_pairs, max_contacts) given. */
+static tw growing_pile(int pairs, int contacts, grow_count *g)
+{
+    carom_world_def d = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int i;
+    d.method = CAROM_METHOD_DISCRETE;
+    d.max_bodies = 41;
+    d.max_pairs = pairs;
+    d.max_contacts = contacts;
+    if (g) {
+        d.grow.alloc = grow_alloc;
+        d.grow.release = grow_release;
+        d.grow.user = g;
+    }
+    t = tw_make(&d);
+    bd.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&bd, 5.0f, 0.5f);
+    bd.position.y = -0.5f;
+    tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    bd.friction = 0.5f;
+    for (i = 0; i < 40; ++i) {
+        if (i % 2)
+            carom_body_def_set_box(&bd, 0.25f, 0.25f);
+        else {
+            bd.shape = CAROM_SHAPE_CIRCLE;
+            bd.radius = 0.25f;
+        }
+        bd.position.x = -2.0f + 0.55f * (float)(i % 8);
+        bd.position.y = 0.3f + 0.55f * (float)(i / 8);
+        tw_add(&t, &bd);
+    }
+    return t;
+}
+
+/*
+ * A world given memory on demand (carom_world_def.grow) never stops short
+ * of capacity: with room for one pair and one contact, a settling pile of
+ * 40 bodies steps through, growing its pool; the discrete method's result
+ * is bit for bit that of a world with the capacities from the start (the
+ * step that grows is taken again from the same state). Every block is
+ * given back by carom_world_release, after which the world still steps.
+ */
+START_TEST(test_growing_world_never_stops_short_and_matches_a_large_one)
+{
+    grow_count g = {0, 0, 0};
+    tw small = growing_pile(1, 1, &g), large = growing_pile(2000, 2000, NULL);
+    carom_stats st;
+    int k, i;
+    for (k = 0; k < 120; ++k) {
+        ck_assert_int_eq(carom_world_step(small.w), CAROM_OK);
+        ck_assert_int_eq(carom_world_step(large.w), CAROM_OK);
+    }
+    for (i = 0; i < 41; ++i) {
+        carom_body_state a = tw_state(&small, i), b = tw_state(&large, i);
+        ck_assert_msg(a.position.x == b.position.x && a.position.y == b.position.y &&
+                          a.rotation.c == b.rotation.c && a.velocity.x == b.velocity.x &&
+                          a.velocity.y == b.velocity.y,
+                      "body %d differs from the large world's", i);
+    }
+    ck_assert_int_eq(carom_world_get_stats(small.w, &st), CAROM_OK);
+    ck_assert_int_gt(st.grows, 0);
+    ck_assert_int_eq(st.grows, g.allocs);
+    ck_assert_int_eq(g.blocks, 1); /* one block held at a time */
+    carom_world_release(small.w);
+    ck_assert_int_eq(g.blocks, 0);
+    carom_world_release(small.w); /* nothing left: nothing happens */
+    ck_assert_int_eq(g.blocks, 0);
+    ck_assert_int_eq(carom_world_step(small.w), CAROM_OK);
+    carom_world_release(small.w);
+    ck_assert_int_eq(g.blocks, 0);
+    tw_free(&small);
+    tw_free(&large);
+}
+END_TEST
+
+/* An allocator that gives nothing: the step fails as without one, and the
+ * world is as it was; grow needs both functions. */
+START_TEST(test_growing_world_with_no_memory_fails_and_rolls_back)
+{
+    grow_count g = {0, 0, 1};
+    tw t = growing_pile(1, 1, &g);
+    carom_body_state before, after;
+    carom_world_def d = carom_default_world_def();
+    carom_status st = CAROM_OK;
+    long k;
+    for (k = 0; k < 120 && st == CAROM_OK; ++k) {
+        before = tw_state(&t, 5);
+        st = carom_world_step(t.w);
+    }
+    ck_assert_msg(st == CAROM_ERR_PAIR_CAPACITY || st == CAROM_ERR_CONTACT_CAPACITY,
+                  "the pile stepped short of capacity: %s", carom_status_string(st));
+    after = tw_state(&t, 5);
+    ck_assert(before.position.y == after.position.y && before.velocity.y == after.velocity.y);
+    ck_assert_int_eq(carom_world_step_count(t.w), k - 1);
+    ck_assert_int_eq(g.allocs, 0);
+    tw_free(&t);
+    d.grow.alloc = grow_alloc;
+    ck_assert_int_eq(carom_world_def_validate(&d), CAROM_ERR_BAD_PARAMETER);
+    d.grow.alloc = NULL;
+    d.grow.release = grow_release;
+    ck_assert_int_eq(carom_world_def_validate(&d), CAROM_ERR_BAD_PARAMETER);
+}
+END_TEST
+
 /* A force that turns NaN once the body has fallen below y = 4. */
 static void nan_below_4(void *user, int body, const carom_body_state *st,
                         carom_vec2 *f, float *torque)
@@ -317,6 +448,8 @@ Suite *suite_world(void)
     tcase_add_test(tc, test_method_names_round_trip);
     tcase_add_test(tc, test_event_record_overflow_is_counted_not_an_error);
     tcase_add_test(tc, test_pair_capacity_overflow_is_reported);
+    tcase_add_test(tc, test_growing_world_never_stops_short_and_matches_a_large_one);
+    tcase_add_test(tc, test_growing_world_with_no_memory_fails_and_rolls_back);
     tcase_add_test(tc, test_non_finite_callback_force_is_refused_and_reported);
     tcase_add_test(tc, test_simulation_is_deterministic);
     suite_add_tcase(s, tc);

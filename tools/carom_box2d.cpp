@@ -458,7 +458,7 @@ struct run_resources {
             std::fclose(trace);
         if (events)
             std::fclose(events);
-        std::free(carom_mem);
+        scene_free_world(cw, carom_mem);
         if (have_scene)
             scene_free(&s);
     }

@@ -1288,7 +1288,7 @@ done:
         rc = EXIT_SIM;
     }
     recorder_free(&rec);
-    free(mem);
+    scene_free_world(w, mem);
     scene_free(&s);
     return rc;
 }
@@ -1626,7 +1626,7 @@ static int lean_measure(const char *path, scene *s, const sim_opts *o, lean_need
             carom_status sf = carom_world_step(wf);
             if (sf != CAROM_OK || !lean_same_state(w, wf, s->body_count)) {
                 n->friction_step = k + 1;
-                free(memf);
+                scene_free_world(wf, memf);
                 memf = NULL;
                 wf = NULL;
             }
@@ -1645,8 +1645,8 @@ static int lean_measure(const char *path, scene *s, const sim_opts *o, lean_need
 done:
     free(mv);
     free(order);
-    free(mem);
-    free(memf);
+    scene_free_world(w, mem);
+    scene_free_world(wf, memf);
     return rc;
 }
 

@@ -653,6 +653,25 @@ void scene_free(scene *s)
     s->body_count = s->body_capacity = 0;
 }
 
+static void *scene_grow_alloc(void *user, size_t bytes)
+{
+    (void)user;
+    return malloc(bytes);
+}
+
+static void scene_grow_release(void *user, void *block)
+{
+    (void)user;
+    free(block);
+}
+
+void scene_free_world(carom_world *w, void *mem)
+{
+    if (w)
+        carom_world_release(w);
+    free(mem);
+}
+
 int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
                       size_t errlen)
 {
@@ -661,6 +680,11 @@ int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
     carom_status st;
     int i;
     wd.max_bodies = s->body_count > 0 ? s->body_count : 1;
+    if (wd.max_pairs == 0 && wd.max_contacts == 0) {
+        wd.grow.alloc = scene_grow_alloc;
+        wd.grow.release = scene_grow_release;
+        wd.grow.user = NULL;
+    }
     st = carom_world_def_validate(&wd);
     if (st != CAROM_OK) {
         snprintf(err, errlen, "world: %s", carom_status_string(st));

@@ -50,10 +50,16 @@ int scene_parse(const char *name, const char *text, scene *s, char *err,
 
 void scene_free(scene *s);
 
-/* Build a world for the scene in freshly allocated memory (*mem, to be
- * free()d by the caller). Returns 0, or -1 with a message in err. */
+/* Build a world for the scene in freshly allocated memory (*mem; give
+ * both back with scene_free_world). Returns 0, or -1 with a message in
+ * err. A scene that sets neither max-pairs nor max-contacts gets a world
+ * that grows (carom_world_def.grow, malloc), so no pile or fast gas stops
+ * short of capacity; one that sets either keeps its capacities as limits. */
 int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
                       size_t errlen);
+
+/* carom_world_release(w), then free(mem); either may be NULL. */
+void scene_free_world(carom_world *w, void *mem);
 
 #ifdef __cplusplus
 }

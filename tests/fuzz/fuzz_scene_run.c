@@ -157,8 +157,8 @@ static void fz_run_method(const scene *s, carom_method method, long steps)
         }
         break;
     }
-    free(ma);
-    free(mb);
+    scene_free_world(wa, ma);
+    scene_free_world(wb, mb);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -774,11 +774,11 @@ static double time_steps(const scene *s, long steps)
         carom_status st = carom_world_step(w);
         spent += now_ns() - t0;
         if (st != CAROM_OK) {
-            free(mem);
+            scene_free_world(w, mem);
             return -1.0;
         }
     }
-    free(mem);
+    scene_free_world(w, mem);
     return spent / (double)steps;
 }
 
@@ -816,7 +816,7 @@ static int run_carom(const scene_kind *k, const char *path, carom_method m, int 
     }
     r = run_new(k, &s, dt, msg, n);
     if (!r) {
-        free(mem);
+        scene_free_world(w, mem);
         scene_free(&s);
         return -1;
     }
@@ -865,7 +865,7 @@ static int run_carom(const scene_kind *k, const char *path, carom_method m, int 
         rec_set(out, "err", "nan");
     free(st);
     free(r);
-    free(mem);
+    scene_free_world(w, mem);
     scene_free(&s);
     return rc;
 }
@@ -1424,14 +1424,14 @@ static int run_text(const char *text, double dt, long steps, carom_method m, ste
         carom_status cs = carom_world_step(w);
         if (cs != CAROM_OK) {
             snprintf(msg, n, "step %ld: %s", i, carom_status_string(cs));
-            free(mem);
+            scene_free_world(w, mem);
             scene_free(&s);
             return -1;
         }
         get_states(w, st, s.body_count);
         cb(user, i, (double)i * (double)(float)dt, st, s.body_count);
     }
-    free(mem);
+    scene_free_world(w, mem);
     scene_free(&s);
     return 0;
 }

@@ -508,7 +508,7 @@ static int cmd_run(int argc, char **argv)
     world = b2CreateWorld(&wd);
     if (!b2World_IsValid(world)) {
         fprintf(stderr, PROG ": b2CreateWorld failed\n");
-        free(cmem);
+        scene_free_world(cw, cmem);
         scene_free(&s);
         return EXIT_SIM;
     }
@@ -608,8 +608,9 @@ static int cmd_run(int argc, char **argv)
         }
         bodies[i] = b;
     }
-    free(cmem);
+    scene_free_world(cw, cmem);
     cmem = NULL;
+    cw = NULL;
 
     if (!o.quiet)
         print_notes(&o, &s, threshold, rest_speed, slop, any_polygon, max_speed);
@@ -714,7 +715,7 @@ done:
     free(samples);
     free(bodies);
     free(centroids);
-    free(cmem);
+    scene_free_world(cw, cmem);
     b2DestroyWorld(world);
     scene_free(&s);
     return rc;

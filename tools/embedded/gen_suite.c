@@ -63,7 +63,7 @@ static int measure(const scene *s, long steps, carom_method m, need *n,
         rc = carom_world_step(w);
     if (rc == CAROM_OK)
         rc = carom_world_get_stats(w, &st);
-    free(mem);
+    scene_free_world(w, mem);
     if (rc != CAROM_OK) {
         snprintf(err, errlen, "%s: step %ld: %s", carom_method_name(m), i,
                  carom_status_string(rc));

@@ -162,7 +162,7 @@ static int carom_side(vscene *s)
     s->carom_mass = (double *)calloc((size_t)nb, sizeof(double));
     s->carom_inertia = (double *)calloc((size_t)nb, sizeof(double));
     if (!s->carom_mass || !s->carom_inertia) {
-        free(mem);
+        scene_free_world(w, mem);
         fprintf(stderr, "validate: out of memory\n");
         return -1;
     }
@@ -175,7 +175,7 @@ static int carom_side(vscene *s)
     carom_world_get_tolerances(w, &tol);
     s->rest_speed = s->sc.world.rest_speed == CAROM_AUTO ? (double)tol.rest_speed
                                                           : (double)s->sc.world.rest_speed;
-    free(mem);
+    scene_free_world(w, mem);
     return 0;
 }
 
