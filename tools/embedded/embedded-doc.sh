@@ -376,10 +376,14 @@ for k in world_1_body_all_capacities_1 per_body_below_256 per_body_above_256 per
 done
 cat <<EOF
 
-A unit of pair capacity is a candidate pair (two copies for the sort) and
-a heap entry; a contact is its constraint, its solve-order slot and two
-warm-start records; an event is a \`carom_event\`. Impacts per step
-(\`max_impacts\`) cost nothing: it is a budget, not an array. The
+A unit of pair capacity is a candidate pair, its heap entry and its touch
+entries (and a copy for the sort when the contacts are too few to lend
+theirs); a contact is its constraint, its solve-order slot and its
+warm-start record; an event is a \`carom_event\`. Impacts per step
+(\`max_impacts\`) cost nothing: it is a budget, not an array. A program
+with a heap can start smaller and let the world grow
+(\`carom_world_def.grow\`, docs/robustness.md): a step short of pairs or
+contacts then takes a pool twice as large and is taken again. The
 target of at most 500 bytes per body at default capacities is
 $(awk '$2 ~ /^default_world_/ { n = $2; gsub(/[^0-9]/, "", n); if ($3 / n > 500) bad = 1 }
        END { print (bad ? "not met" : "met") }' "$work/sizes-m0.txt").
