@@ -38,11 +38,7 @@ const int suite_scene_count = 0;
 
 /* Where the last field of carom_world_def this file knows of ends: a
  * field added after it must be carried (or checked) here. */
-#ifdef CAROM_DEFAULT_TOUCH_EVENTS_PER_BODY
-#define SUITE_WORLD_DEF_END (offsetof(carom_world_def, max_touch_events) + sizeof(int))
-#else
-#define SUITE_WORLD_DEF_END (offsetof(carom_world_def, force_user) + sizeof(void *))
-#endif
+#define SUITE_WORLD_DEF_END (offsetof(carom_world_def, grow) + sizeof(carom_allocator))
 
 typedef struct need {
     int pairs, contacts, impacts;
@@ -273,11 +269,15 @@ int main(int argc, char **argv)
                 theirs.max_contacts = sc.max_contacts;
                 theirs.max_events = sc.max_events;
                 theirs.max_impacts = sc.max_impacts;
-                /* Up to the callback pointers; then the fields after
-                 * them one by one (padding is not compared), and no field
-                 * this file does not know of. */
-                if (memcmp(&mine, &theirs, offsetof(carom_world_def, force_fn)) != 0 ||
+                /* Up to sleep_time, the last field before the callback
+                 * pointers (not the padding before them, which a copy
+                 * need not carry); then the fields after them one by one,
+                 * and no field this file does not know of. */
+                if (memcmp(&mine, &theirs,
+                           offsetof(carom_world_def, sleep_time) + sizeof(float)) != 0 ||
                     theirs.force_fn != NULL ||
+                    /* (the firmware's worlds have no allocator to grow by) */
+                    theirs.grow.alloc != NULL || theirs.grow.release != NULL ||
 #ifdef CAROM_DEFAULT_TOUCH_EVENTS_PER_BODY
                     mine.max_touch_events != theirs.max_touch_events ||
 #endif
