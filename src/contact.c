@@ -209,6 +209,7 @@ int cr_contact_add(carom_world *w, int pair)
     if (w->contact_count >= w->def.max_contacts)
         return -2;
     c = &w->contacts[w->contact_count];
+    ++w->contact_edits;
     c->a = pr->a;
     c->b = pr->b;
     c->pair = pair;
@@ -224,6 +225,7 @@ void cr_contact_remake(carom_world *w, cr_contact *c)
     const cr_pair *pr = &w->pairs[c->pair];
     const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
     cr_manifold m;
+    ++w->contact_edits;
     c->flags &= ~CR_CONTACT_RESTING;
     if (!cr_collide(&w->info[c->a].shape, A->x, A->q, &w->info[c->b].shape,
                     B->x, B->q, c->reach, w->scale.face_tol, &m)) {

@@ -826,9 +826,10 @@ void cr_solver_mark_shocks(carom_world *w)
 {
     int i, k;
     cr_v2 up;
+    w->shock_marked = w->contact_edits;
     for (i = 0; i < w->contact_count; ++i)
         w->contacts[i].flags &= (unsigned short)~(CR_CONTACT_SHOCK_A | CR_CONTACT_SHOCK_B);
-    if (!cr_up(w, &up))
+    if (w->support_count == 0 || !cr_up(w, &up))
         return;
     for (i = 0; i < w->support_count; ++i) {
         int u = w->support[i];

@@ -363,6 +363,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->support = CR_AT(support, int);
     w->support_count = 0;
     w->sep_cached = 0;
+    w->contact_edits = w->shock_marked = 0u;
     w->drift = CR_AT(drift, cr_drift);
     w->heap_count = 0;
     w->mark = CR_AT(mark, int);
@@ -815,7 +816,9 @@ static carom_status cr_step(carom_world *w)
             st = cr_events_advance(w, t1);
             if (st != CAROM_OK)
                 return st;
-            cr_solver_mark_shocks(w);
+            /* contacts made or remade since the marks (impacts) */
+            if (w->contact_edits != w->shock_marked)
+                cr_solver_mark_shocks(w);
         }
         CR_PHASE(w, CAROM_PHASE_INTEGRATION);
         cr_sync_active(w, t1);

@@ -123,6 +123,9 @@ struct carom_world {
     int *support;             /* supported bodies, bottom up (breadth first
                                  from the static ones) */
     int support_count;
+    unsigned contact_edits;   /* contacts made or remade during steps */
+    unsigned shock_marked;    /* contact_edits when cr_solver_mark_shocks
+                                 last ran */
     int sep_cached;           /* every solved point's separation at the
                                  current poses is in its pp (no position
                                  changed since the last velocity sweep) */
