@@ -44,7 +44,9 @@
  *
  * Anchors, normals and effective masses are those of the step start; the
  * separation is updated from the bodies' displacements dp and rotations
- * dq since then: s = base_sep + n . (dp_b + dq_b rb - dp_a - dq_a ra). The
+ * dq since then: s = base_sep + n . (dp_b + dq_b rb - dp_a - dq_a ra),
+ * where a circle's dq is the identity (cr_anchor_turn: its contact point
+ * is where its surface faces the other body, not a material point). The
  * two points of a face contact are coupled through rotation, so their
  * normal impulses are solved together, as the 2x2 complementarity problem
  * (Box2D 2.4's block solver): a box rests and rises level. Contacts with a
