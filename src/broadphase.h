@@ -22,6 +22,8 @@ typedef struct cr_pair {
 
 #define CR_PAIR_MET 1 /* met in this substep: needs a contact */
 #define CR_PAIR_HIT 2 /* an impact of this step */
+#define CR_PAIR_RESUME 4 /* its time is where an unfinished impact search
+                            stopped (CR_TOI_RESUME), not a meeting */
 
 /* A body's box in the grid. */
 typedef struct cr_proxy {

@@ -235,12 +235,13 @@ static void cr_pair_search(carom_world *w, int k, float t0)
     cr_mover A, B;
     float dt = w->def.dt, slop = w->scale.slop;
     float tol = cr_mul(CAROM_TOI_TOLERANCE, slop), toi, sep, scale, approach;
-    int slow = 0;
+    int slow = 0, found;
     cr_v2 xa, xb;
     cr_rot qa, qb;
 
     ++p->stamp;
     p->toi = CR_NEVER;
+    p->met &= (unsigned char)~CR_PAIR_RESUME;
     p->va = w->drift[p->a].version;
     p->vb = w->drift[p->b].version;
     p->solved = cr_solved_contact(w, p);
@@ -276,7 +277,12 @@ static void cr_pair_search(carom_world *w, int k, float t0)
             p->met |= CR_PAIR_MET;
             slow = 1;
         }
-    } else if (cr_time_of_impact(&A, &B, t0, dt, tol, &toi)) {
+    } else if ((found = cr_time_of_impact(&A, &B, t0, dt, tol, &toi)) == CR_TOI_RESUME) {
+        /* still apart where the search stopped: take it up from there
+         * (cr_impact_instant finds it apart and searches on) */
+        p->toi = toi;
+        p->met |= CR_PAIR_RESUME;
+    } else if (found) {
         /* arriving slower than the rest speed is coming to rest, not an
          * impact: the contact solver takes it */
         approach = cr_approach_speed(&A, &B, toi, slop, &scale);
@@ -319,6 +325,7 @@ void cr_events_begin(carom_world *w)
     int k;
     w->heap_count = 0;
     w->regrown_count = 0;
+    w->resumed_searches = 0;
     for (k = 0; k < w->pair_count; ++k)
         cr_pair_search(w, k, 0.0f);
 }
@@ -1095,10 +1102,22 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         cr_note_pre(w, w->island[i]);
     }
     for (i = 0; i < seeds; ++i) {
-        cr_pair *p = &w->pairs[w->rows[i].pair];
-        if (cr_row_make(w, w->rows[i].pair, &w->rows[nr]))
+        int k_pair = w->rows[i].pair;
+        cr_pair *p = &w->pairs[k_pair];
+        if (cr_row_make(w, k_pair, &w->rows[nr])) {
             ++nr;
-        p->toi = CR_NEVER;
+            p->toi = CR_NEVER;
+        } else if ((p->met & CR_PAIR_RESUME) && w->resumed_searches < w->def.max_impacts) {
+            /* apart at the instant where a conservative advancement ran
+             * out of iterations (a corner of a fast-turning polygon
+             * sweeping past a face): search on from here, or the pair
+             * would pass through for the rest of the step (at most
+             * max_impacts such searches a step) */
+            ++w->resumed_searches;
+            cr_pair_search(w, k_pair, t);
+        } else {
+            p->toi = CR_NEVER;
+        }
     }
     CR_PHASE(w, CAROM_PHASE_IMPULSES);
     cr_rows_solve(w, w->rows, nr, CAROM_IMPACT_ISLAND_ITERATIONS);

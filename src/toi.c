@@ -461,9 +461,9 @@ static int cr_toi_advance(const cr_mover *A, const cr_mover *B, float t0,
             return 0;
     }
     /* not converged: the conservative time reached so far; the event loop
-     * finds the bodies apart there and searches again */
+     * takes the pair up there, finds it apart and searches on */
     *out = cr_sub(t, t0);
-    return 1;
+    return CR_TOI_RESUME;
 }
 #endif /* CAROM_ENABLE_POLYGONS */
 

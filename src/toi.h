@@ -44,8 +44,11 @@ float cr_approach_speed(const cr_mover *A, const cr_mover *B, float t,
  * First instant in [t0, t1] (local step time) at which A and B, apart at
  * t0, come within `tol` of touching while approaching. Exact closed forms
  * for non-rotating pairs; conservative advancement (never past the impact)
- * when a polygon rotates. Returns 1 and the time in *toi.
+ * when a polygon rotates. Returns 1 and the time in *toi; or
+ * CR_TOI_RESUME and the time the advancement reached when it ran out of
+ * iterations still apart (search again from there); 0 if they do not meet.
  */
+#define CR_TOI_RESUME 2
 int cr_time_of_impact(const cr_mover *A, const cr_mover *B, float t0, float t1,
                       float tol, float *toi);
 

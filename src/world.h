@@ -149,6 +149,8 @@ struct carom_world {
     int direct_cap;             /* (row * 8 + kind), at most this many */
     int impacts_this_step;
     int budget_hit;
+    int resumed_searches;     /* impact searches resumed this step after an
+                                 instant found the pair still apart */
     int reorder;              /* impacts handed contacts to the solver */
 
     /* results */

@@ -198,6 +198,69 @@ START_TEST(test_fast_bullet_never_passes_a_thin_dynamic_wall)
 }
 END_TEST
 
+/*
+ * A 5 cm octagon turning 7.5 times a step (11312 rad/s, dt 1/240, one
+ * substep) at 105 m/s towards a static wall 2 m thick (near face x =
+ * 8.485): in the events methods it must never end a step inside or
+ * beyond the wall. The contact solver cannot follow such a turn (it once
+ * took the contact and the octagon passed through); the impact search's
+ * conservative advancement can, if it goes on from where it runs out of
+ * iterations (it once stopped there for the rest of the step).
+ */
+START_TEST(test_fast_turning_polygon_never_passes_a_wall)
+{
+    static const float verts[8][2] = {
+        {0.0186351618f, -0.0207248634f}, {0.0446893334f, -0.0126131015f},
+        {0.05294981f, 0.00518550396f},   {0.0361430013f, 0.0165021995f},
+        {-0.00905213804f, 0.02174879f},  {-0.0502405543f, 0.00852722709f},
+        {-0.0503429999f, -0.00842761046f}, {-0.0276072772f, -0.0190135468f}};
+    int m;
+    for (m = 0; m < CAROM_METHOD_COUNT; ++m) {
+        carom_world_def wd = carom_default_world_def();
+        carom_body_def wall = carom_default_body_def(), bd = carom_default_body_def();
+        tw t;
+        int k, id;
+        if (m == CAROM_METHOD_DISCRETE)
+            continue; /* no impact search: docs/robustness.md, known limits */
+        wd.method = (carom_method)m;
+        wd.gravity.y = 0.0f;
+        wd.dt = 1.0f / 240.0f;
+        wd.substeps = 1;
+        wd.max_bodies = 2;
+        t = tw_make(&wd);
+        wall.type = CAROM_BODY_STATIC;
+        carom_body_def_set_box(&wall, 1.0f, 10.4852814f);
+        wall.position.x = 9.48528137f;
+        wall.restitution = 1.0f;
+        wall.friction = 0.0f;
+        tw_add(&t, &wall);
+        bd.shape = CAROM_SHAPE_POLYGON;
+        bd.vertex_count = 8;
+        for (k = 0; k < 8; ++k) {
+            bd.vertices[k].x = verts[k][0];
+            bd.vertices[k].y = verts[k][1];
+        }
+        bd.position.x = 7.12497568f;
+        bd.position.y = -2.90261412f;
+        bd.rotation = carom_rot_from_angle(2.41757059f);
+        bd.velocity.x = 58.2466125f;
+        bd.velocity.y = 87.1635742f;
+        bd.angular_velocity = -11311.7695f;
+        bd.restitution = 1.0f;
+        bd.friction = 0.0f;
+        id = tw_add(&t, &bd);
+        for (k = 0; k < 20; ++k) {
+            ck_assert_int_eq(carom_world_step(t.w), CAROM_OK);
+            ck_assert_msg(tw_state(&t, id).position.x < 8.485f,
+                          "%s, step %d: the octagon is at x = %g, the wall's face at 8.485",
+                          carom_method_name((carom_method)m), k + 1,
+                          (double)tw_state(&t, id).position.x);
+        }
+        tw_free(&t);
+    }
+}
+END_TEST
+
 static void momenta(const tw *t, int n, double P[2], double *L, double *E)
 {
     int i;
@@ -837,6 +900,7 @@ Suite *suite_events(void)
     tcase_add_test(tn, test_bouncing_ball_impact_times_and_speeds_are_analytic);
     tcase_add_test(tn, test_fast_bullet_never_passes_a_thin_static_wall);
     tcase_add_test(tn, test_fast_bullet_never_passes_a_thin_dynamic_wall);
+    tcase_add_test(tn, test_fast_turning_polygon_never_passes_a_wall);
     tcase_add_test(tc, test_isolated_bodies_conserve_momentum);
     tcase_add_test(tc, test_impulse_into_a_sleeping_body_mid_step_wakes_it_next_step);
     tcase_add_test(tc, test_polygon_hit_off_centre_conserves_linear_and_angular_momentum);
