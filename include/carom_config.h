@@ -104,6 +104,15 @@
                                          (saves the table, about 1 KB) */
 #endif
 
+#ifndef CAROM_ENABLE_GROW
+#define CAROM_ENABLE_GROW 1 /**< memory on demand (carom_world_def.grow): a
+                                 step short of pair or contact capacity
+                                 takes a larger pool from the program's
+                                 allocator; off: a world given an
+                                 allocator is refused (CAROM_ERR_DISABLED)
+                                 and capacities are hard limits */
+#endif
+
 #ifndef CAROM_ENABLE_PROFILE
 #define CAROM_ENABLE_PROFILE 0 /**< count every float operation by kind and
                                     phase; off: the arithmetic layer is plain

@@ -117,6 +117,10 @@ carom_status carom_world_def_validate(const carom_world_def *d)
 #endif
     if (!d->grow.alloc != !d->grow.release)
         return CAROM_ERR_BAD_PARAMETER; /* both or neither */
+#if !CAROM_ENABLE_GROW
+    if (d->grow.alloc)
+        return CAROM_ERR_DISABLED;
+#endif
     return cr_method_available(d->method);
 }
 
@@ -915,6 +919,7 @@ static carom_status cr_step_taken(carom_world *w)
     return CAROM_OK;
 }
 
+#if CAROM_ENABLE_GROW
 /* ---- growing ------------------------------------------------------------------ */
 
 /* Move the pool to new capacities in `pool` (a block of l's pool size, or
@@ -985,6 +990,15 @@ static int cr_grow(carom_world *w, carom_status st)
     return 1;
 }
 
+#else
+static int cr_grow(carom_world *w, carom_status st)
+{
+    (void)w;
+    (void)st;
+    return 0; /* capacities are hard limits */
+}
+#endif
+
 carom_status carom_world_step(carom_world *w)
 {
     carom_status st;
@@ -998,6 +1012,7 @@ carom_status carom_world_step(carom_world *w)
     }
 }
 
+#if CAROM_ENABLE_GROW
 void carom_world_release(carom_world *w)
 {
     carom_world_def nd;
@@ -1014,6 +1029,12 @@ void carom_world_release(carom_world *w)
     w->def.grow.release(w->def.grow.user, w->pool_mem);
     w->pool_mem = 0;
 }
+#else
+void carom_world_release(carom_world *w)
+{
+    (void)w; /* nothing was ever taken */
+}
+#endif
 
 /* ---- results --------------------------------------------------------------------- */
 

@@ -1884,6 +1884,10 @@ static int cmd_lean(int argc, char **argv)
                     s.body_count);
     lean_switch("STATUS_NAMES", 0, "status names are for messages; turn on if the program "
                                    "prints carom_status_string()");
+#ifdef CAROM_ENABLE_GROW
+    lean_switch("GROW", 0, "the capacities below hold the scene; memory on demand needs an "
+                           "allocator (turn on if the program gives one)");
+#endif
 #ifdef CAROM_ENABLE_QUERIES
     lean_switch("QUERIES", 0, "stepping makes no query; turn on if the program calls them");
 #endif

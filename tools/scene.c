@@ -653,6 +653,7 @@ void scene_free(scene *s)
     s->body_count = s->body_capacity = 0;
 }
 
+#if CAROM_ENABLE_GROW
 static void *scene_grow_alloc(void *user, size_t bytes)
 {
     (void)user;
@@ -664,6 +665,7 @@ static void scene_grow_release(void *user, void *block)
     (void)user;
     free(block);
 }
+#endif
 
 void scene_free_world(carom_world *w, void *mem)
 {
@@ -680,11 +682,13 @@ int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
     carom_status st;
     int i;
     wd.max_bodies = s->body_count > 0 ? s->body_count : 1;
+#if CAROM_ENABLE_GROW
     if (wd.max_pairs == 0 && wd.max_contacts == 0) {
         wd.grow.alloc = scene_grow_alloc;
         wd.grow.release = scene_grow_release;
         wd.grow.user = NULL;
     }
+#endif
     st = carom_world_def_validate(&wd);
     if (st != CAROM_OK) {
         snprintf(err, errlen, "world: %s", carom_status_string(st));
