@@ -205,19 +205,33 @@ void cr_solver_order(carom_world *w)
 }
 
 /* Impulse P along dir at lever arms la, lb: -P on A, +P on B. */
-static void cr_apply(cr_body *A, cr_body *B, float la, float lb, cr_v2 dir,
-                     float P)
+/* The same on the velocities (va, wa), (vb, wb) of bodies with inverse
+ * masses ima, imb and inverse inertias iia, iib: their velocities or,
+ * in the position sweep, their pseudo-velocities. */
+CR_INLINE void cr_apply_to(cr_v2 *va, float *wa, float ima, float iia, cr_v2 *vb, float *wb,
+                           float imb, float iib, float la, float lb, cr_v2 dir, float P)
 {
     cr_v2 I = cr_vscale(P, dir);
-    A->v = cr_vmadd(A->v, cr_neg(A->inv_m), I);
-    B->v = cr_vmadd(B->v, B->inv_m, I);
+    *va = cr_vmadd(*va, cr_neg(ima), I);
+    *vb = cr_vmadd(*vb, imb, I);
 #if CAROM_ENABLE_ROTATION
-    A->w = cr_sub(A->w, cr_mul(A->inv_I, cr_mul(la, P)));
-    B->w = cr_add(B->w, cr_mul(B->inv_I, cr_mul(lb, P)));
+    *wa = cr_sub(*wa, cr_mul(iia, cr_mul(la, P)));
+    *wb = cr_add(*wb, cr_mul(iib, cr_mul(lb, P)));
 #else
+    (void)wa;
+    (void)wb;
+    (void)iia;
+    (void)iib;
     (void)la;
     (void)lb;
 #endif
+}
+
+static void cr_apply(cr_body *A, cr_body *B, float la, float lb, cr_v2 dir,
+                     float P)
+{
+    cr_apply_to(&A->v, &A->w, A->inv_m, A->inv_I, &B->v, &B->w, B->inv_m, B->inv_I, la, lb,
+                dir, P);
 }
 
 static float cr_normal_lever(const carom_world *w, int body, cr_v2 r, cr_v2 n)
@@ -290,18 +304,11 @@ static void cr_rows_levers(const carom_world *w, const cr_contact *c, cr_rows_ct
     }
 }
 
-/* Normal impulse d at point k: -d n on A, +d n on B (as cr_apply). */
+/* Normal impulse d at point k: -d n on A, +d n on B. */
 CR_INLINE void cr_rows_apply(cr_rows_ctx *x, cr_v2 n, int k, float d)
 {
-    cr_v2 I = cr_vscale(d, n);
-    *x->va = cr_vmadd(*x->va, cr_neg(x->ima), I);
-    *x->vb = cr_vmadd(*x->vb, x->imb, I);
-#if CAROM_ENABLE_ROTATION
-    *x->wa = cr_sub(*x->wa, cr_mul(x->iia, cr_mul(x->la[k], d)));
-    *x->wb = cr_add(*x->wb, cr_mul(x->iib, cr_mul(x->lb[k], d)));
-#else
-    (void)k;
-#endif
+    cr_apply_to(x->va, x->wa, x->ima, x->iia, x->vb, x->wb, x->imb, x->iib, x->la[k],
+                x->lb[k], n, d);
 }
 
 CR_INLINE float cr_rows_vn(const cr_rows_ctx *x, const cr_contact *c, int k)
