@@ -98,8 +98,10 @@ static int cr_escape_visit(void *ctx, int other)
     carom_world *w = c->w;
     const cr_body *A = &w->bodies[c->body], *B = &w->bodies[other];
     int a = c->body < other ? c->body : other;
+    /* (the escaped body moved this step, even if it fell asleep at its
+     * end: not cr_may_collide, which would drop it then) */
     if (other == c->body || c->n >= w->touch_cap ||
-        !((A->flags | B->flags) & CR_BODY_SENSOR) || !cr_may_collide(w, c->body, other))
+        !((A->flags | B->flags) & CR_BODY_SENSOR) || !cr_may_touch(w, c->body, other))
         return 1;
     if (!cr_lt(cr_separation(&w->info[c->body].shape, A->x, A->q, &w->info[other].shape,
                              B->x, B->q),

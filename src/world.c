@@ -511,9 +511,14 @@ void cr_scale_compute(const carom_world *w, cr_scale *s)
 
 int cr_may_collide(const carom_world *w, int a, int b)
 {
-    const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
-    if (!cr_body_moves(A) && !cr_body_moves(B))
+    if (!cr_body_moves(&w->bodies[a]) && !cr_body_moves(&w->bodies[b]))
         return 0;
+    return cr_may_touch(w, a, b);
+}
+
+int cr_may_touch(const carom_world *w, int a, int b)
+{
+    const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
 #if CAROM_ENABLE_SENSORS
     /* two sensors never report each other; a sensor sees any body */
     if ((A->flags & B->flags) & CR_BODY_SENSOR)

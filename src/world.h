@@ -203,6 +203,10 @@ void cr_scale_compute(const carom_world *w, cr_scale *s);
  * and their filter lets them. */
 int cr_may_collide(const carom_world *w, int a, int b);
 
+/* The same whether or not either can move now (a body that moved this step
+ * may have fallen asleep at its end). */
+int cr_may_touch(const carom_world *w, int a, int b);
+
 /* Count an impact of bodies a and b at local step time t, and record it
  * in the event list if there is room (else count it as dropped). */
 void cr_record_impact(carom_world *w, int a, int b, float t, cr_v2 n,
