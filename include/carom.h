@@ -374,11 +374,13 @@ const char *carom_version(void);
  * Rotation helpers (library's own trigonometry; no libm)
  * ====================================================================== */
 
+#if CAROM_ENABLE_ANGLES
 /** Unit rotation of `angle` radians (|angle| up to about 1e5 is accurate). */
 carom_rot carom_rot_from_angle(float angle);
 
 /** Angle of a rotation in (-pi, pi]. */
 float carom_rot_angle(carom_rot r);
+#endif /* CAROM_ENABLE_ANGLES (off: pass (cos, sin) pairs) */
 
 /* ======================================================================
  * World life cycle

@@ -34,6 +34,17 @@
                                    gravity only */
 #endif
 
+#ifndef CAROM_ENABLE_GRAVITY
+#define CAROM_ENABLE_GRAVITY 1 /**< world gravity; off: the world's gravity
+                                    must be (0, 0) (CAROM_ERR_DISABLED
+                                    otherwise; the default becomes 0), the
+                                    stacking passes are left out, and with
+                                    CAROM_ENABLE_FORCES off too nothing
+                                    accelerates, so the quartic time of
+                                    impact is left out (top-down tables,
+                                    space) */
+#endif
+
 #ifndef CAROM_ENABLE_EVENTS
 #define CAROM_ENABLE_EVENTS 1 /**< in-step impact timing (methods "events"
                                    and "first-impact"); off: only the
@@ -96,6 +107,14 @@
                                  no grid arrays: for worlds of a few dozen
                                  bodies (`carom lean` turns it off up to
                                  64) */
+#endif
+
+#ifndef CAROM_ENABLE_ANGLES
+#define CAROM_ENABLE_ANGLES 1 /**< the angle helpers carom_rot_from_angle()
+                                   and carom_rot_angle(); off: they are not
+                                   declared (programs give rotations as
+                                   (cos, sin) pairs), about 0.9 KB less
+                                   code when rotation is off too */
 #endif
 
 #ifndef CAROM_ENABLE_STATUS_NAMES
@@ -197,7 +216,9 @@
 #endif
 
 #ifndef CAROM_DEFAULT_GRAVITY_Y
-#define CAROM_DEFAULT_GRAVITY_Y (-10.0f) /**< gravity (0, g_y), m/s^2 */
+#define CAROM_DEFAULT_GRAVITY_Y (-10.0f) /**< gravity (0, g_y), m/s^2 (0
+                                             with CAROM_ENABLE_GRAVITY
+                                             off) */
 #endif
 
 #ifndef CAROM_DEFAULT_MAX_BODIES

@@ -171,4 +171,8 @@ CR_INLINE cr_rot cr_rot_normalize(cr_rot q)
     return cr_r(cr_mul(q.c, inv), cr_mul(q.s, inv));
 }
 
+/* Unit rotation of `angle` radians by carom's own trigonometry (trig.c;
+ * carom_rot_from_angle is this, for programs) */
+carom_rot cr_rot_from_angle(float angle);
+
 #endif /* CAROM_ARITH_H */

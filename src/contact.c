@@ -262,6 +262,7 @@ void cr_contacts_store(carom_world *w)
     w->warm_count = n;
 }
 
+#if CR_TWO_POINTS
 /*
  * The 2x2 linear complementarity problem of a 2-point row:
  *     find x >= 0 with y = K x + b >= 0 and x_i y_i = 0,
@@ -299,4 +300,5 @@ int cr_lcp2(float k11, float k12, float k22, float b1, float b2,
     }
     return 0;
 }
+#endif /* CR_TWO_POINTS */
 

@@ -141,11 +141,13 @@ int cr_contact_add(carom_world *w, int pair);
  * stale. Impulses start at zero; no points if the pair is out of reach. */
 void cr_contact_remake(carom_world *w, cr_contact *c);
 
+#if CR_TWO_POINTS
 /* The 2x2 linear complementarity problem of a 2-point manifold: x >= 0,
  * y = K x + b >= 0, x_i y_i = 0, K = [k11 k12; k12 k22] positive definite;
  * 0 if no case fits (rounding at a nearly singular K). */
 int cr_lcp2(float k11, float k12, float k22, float b1, float b2, float *x1,
             float *x2);
+#endif
 
 /* The impulses to warm-start the next step, into w->warm (over the last
  * step's: call it when the step can no longer fail). */

@@ -517,6 +517,7 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
             change = cr_max(change, cr_div(cr_abs(d), r->mass_t[k]));
         }
 #endif
+#if CR_TWO_POINTS
     if (CR_TWO_POINTS && r->block) {
         float a1 = r->pn[0], a2 = r->pn[1], x1, x2;
         float b1 = cr_sub(cr_sub(cr_row_vn(w, r, 0, r->n), r->target[0]),
@@ -533,6 +534,7 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
                                          cr_mul(cr_abs(d2), r->k22)));
         }
     }
+#endif
     for (k = 0; k < r->count; ++k) {
         float vn = cr_row_vn(w, r, k, r->n);
         float pn = cr_max(cr_sub(r->pn[k], cr_mul(r->mass_n[k], cr_sub(vn, r->target[k]))),

@@ -28,7 +28,7 @@ cr_rot cr_rot_advance(cr_rot q, float angle)
 #if CAROM_ENABLE_ROTATION
     if (cr_eq(angle, 0.0f))
         return q;
-    return cr_rot_normalize(cr_rot_mul(carom_rot_from_angle(angle), q));
+    return cr_rot_normalize(cr_rot_mul(cr_rot_from_angle(angle), q));
 #else
     (void)angle;
     return q;

@@ -325,6 +325,7 @@ static void cr_normal_rows(cr_rows_ctx *x, const cr_contact *c, float *acc,
                            const float *bias, const float *vn)
 {
     int k;
+#if CR_TWO_POINTS
     if (CR_TWO_POINTS && c->count == 2 && c->block) {
         float a1 = acc[0], a2 = acc[1], x1, x2;
         float b1 = cr_sub(cr_add(vn[0], bias[0]),
@@ -339,6 +340,7 @@ static void cr_normal_rows(cr_rows_ctx *x, const cr_contact *c, float *acc,
             return;
         }
     }
+#endif
     for (k = 0; k < c->count; ++k) {
         /* the first point's impulse changed the second's velocity */
         float v = k == 0 ? vn[0] : cr_rows_vn(x, c, k);
@@ -767,7 +769,7 @@ static int cr_supports(const cr_contact *c, int lower, cr_v2 up)
 
 static int cr_up(const carom_world *w, cr_v2 *up)
 {
-#if !CAROM_ENABLE_STACKING
+#if !CAROM_ENABLE_STACKING || !CAROM_ENABLE_GRAVITY
     /* no support order, priming or shock propagation (what they do for
      * stacks under gravity is compiled out; without gravity they do
      * nothing anyway) */
@@ -973,6 +975,7 @@ static int cr_one_sided(const carom_world *w, const cr_contact *c, int u,
     }
     if (!any)
         return 0;
+#if CR_TWO_POINTS
     if (CR_TWO_POINTS && c->count == 2) {
         float k12 = cr_add(U->inv_m, cr_mul(U->inv_I, cr_mul(l[0], l[1])));
         float det = cr_sub(cr_mul(kk[0], kk[1]), cr_mul(k12, k12));
@@ -980,6 +983,7 @@ static int cr_one_sided(const carom_world *w, const cr_contact *c, int u,
             cr_lcp2(kk[0], k12, kk[1], cr_neg(err[0]), cr_neg(err[1]), &x[0], &x[1]))
             return 2;
     }
+#endif
     for (j = 0; j < c->count; ++j)
         x[j] = cr_gt(kk[j], 0.0f) ? cr_max(0.0f, cr_div(err[j], kk[j])) : 0.0f;
     return c->count == 2 ? 1 : c->count; /* sequential fallback: approximate */

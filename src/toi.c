@@ -208,6 +208,7 @@ int cr_first_down_root2(float c0, float c1, float c2, float hi, float *out)
     return 0;
 }
 
+#if CR_ACCELERATES
 static float cr_poly4(const float c[5], float s)
 {
     return cr_add(c[0], cr_mul(s, cr_add(c[1], cr_mul(s, cr_add(c[2],
@@ -278,6 +279,7 @@ int cr_first_root4(const float c[5], float hi, float *out)
     *out = a; /* out of budget: nothing before a, maybe something after */
     return 1;
 }
+#endif /* CR_ACCELERATES */
 
 /* ---- shape pairs -------------------------------------------------------------- */
 
@@ -289,10 +291,8 @@ static int cr_toi_point(cr_v2 p, cr_v2 u, cr_v2 q, float R, float hi, float *s)
     float c0 = cr_mul(gap, cr_add(len, R)); /* |p|^2 - R^2 without cancelling */
     if (!cr_gt(gap, 0.0f))
         return 0;
-    if (cr_eq(q.x, 0.0f) && cr_eq(q.y, 0.0f))
-        return cr_first_down_root2(c0, cr_mul(2.0f, cr_vdot(p, u)),
-                                   cr_vdot(u, u), hi, s);
-    {
+#if CR_ACCELERATES
+    if (!cr_eq(q.x, 0.0f) || !cr_eq(q.y, 0.0f)) {
         float c[5];
         c[0] = c0;
         c[1] = cr_mul(2.0f, cr_vdot(p, u));
@@ -301,6 +301,10 @@ static int cr_toi_point(cr_v2 p, cr_v2 u, cr_v2 q, float R, float hi, float *s)
         c[4] = cr_vdot(q, q);
         return cr_first_root4(c, hi, s);
     }
+#else
+    (void)q; /* nothing accelerates in this build: q = 0 */
+#endif
+    return cr_first_down_root2(c0, cr_mul(2.0f, cr_vdot(p, u)), cr_vdot(u, u), hi, s);
 }
 
 /* Fastest normal approach of A and B at local time t over the points of

@@ -23,7 +23,8 @@
 /* Beyond this a float angle has no fractional bits worth reducing. */
 #define CR_TRIG_HUGE_ARG 1.0e9f
 
-carom_rot carom_rot_from_angle(float angle)
+#if CAROM_ENABLE_ANGLES || CAROM_ENABLE_ROTATION
+carom_rot cr_rot_from_angle(float angle)
 {
     float k, r, r2, s, c, tmp;
     long quadrant;
@@ -69,6 +70,14 @@ carom_rot carom_rot_from_angle(float angle)
 
 /* atan(t) for 0 <= t <= 1: two half-angle reductions bring t below
  * tan(pi/16) ~ 0.2, where six terms of the series are exact to float. */
+#endif
+
+#if CAROM_ENABLE_ANGLES
+carom_rot carom_rot_from_angle(float angle)
+{
+    return cr_rot_from_angle(angle);
+}
+
 static float cr_atan_unit(float t)
 {
     int i;
@@ -100,3 +109,4 @@ float carom_rot_angle(carom_rot r)
         a = cr_neg(a);
     return a;
 }
+#endif /* CAROM_ENABLE_ANGLES */

@@ -41,7 +41,11 @@
 carom_world_def carom_default_world_def(void)
 {
     carom_world_def d;
+#if CAROM_ENABLE_GRAVITY
     d.gravity = cr_v(0.0f, CAROM_DEFAULT_GRAVITY_Y);
+#else
+    d.gravity = cr_v(0.0f, 0.0f);
+#endif
     d.dt = CAROM_DEFAULT_DT;
 #if CAROM_ENABLE_EVENTS
     d.method = CAROM_METHOD_EVENTS;
@@ -94,6 +98,10 @@ carom_status carom_world_def_validate(const carom_world_def *d)
         return CAROM_ERR_BAD_DT;
     if (!cr_v2_within(d->gravity, CAROM_LIMIT_MAX_ACCEL))
         return CAROM_ERR_OUT_OF_RANGE;
+#if !CAROM_ENABLE_GRAVITY
+    if (!cr_eq(d->gravity.x, 0.0f) || !cr_eq(d->gravity.y, 0.0f))
+        return CAROM_ERR_DISABLED;
+#endif
     if (d->max_bodies <= 0 || d->max_bodies > CR_MAX_BODIES ||
         d->max_pairs < 0 || d->max_pairs > CR_MAX_CAPACITY ||
         d->max_contacts < 0 || d->max_contacts > CR_MAX_CAPACITY ||

@@ -770,9 +770,16 @@ run lean "$tmp/twoballs.scene"
 expect_rc 0 "lean of two frictionless balls"
 cp "$tmp/out" "$tmp/twoballs.h"
 check "lean: nothing on stderr" test ! -s "$tmp/err"
-for sw in POLYGONS DYNAMIC_POLYGONS POLYGON_POLYGON ROTATION FRICTION FORCES SLEEP KINEMATIC; do
+for sw in POLYGONS DYNAMIC_POLYGONS POLYGON_POLYGON ROTATION FRICTION FORCES SLEEP KINEMATIC \
+    GRAVITY ANGLES; do
     check "lean two balls: CAROM_ENABLE_$sw 0" header_has "$tmp/twoballs.h" "CAROM_ENABLE_$sw" 0
 done
+# an angle without rotation keeps the angle helpers (the scene's angle= needs them)
+sed 's/restitution=1 friction=0$/restitution=1 friction=0 angle=0.5/' "$tmp/twoballs.scene" \
+    > "$tmp/angleballs.scene"
+run lean "$tmp/angleballs.scene"
+check "lean two balls at an angle: CAROM_ENABLE_ANGLES 1" header_has "$tmp/out" CAROM_ENABLE_ANGLES 1
+check "lean two balls at an angle: CAROM_ENABLE_ROTATION 0" header_has "$tmp/out" CAROM_ENABLE_ROTATION 0
 check "lean two balls: CAROM_ENABLE_EVENTS 1 (method events)" \
     header_has "$tmp/twoballs.h" CAROM_ENABLE_EVENTS 1
 check "lean two balls: CAROM_LEAN_MAX_BODIES 2" header_has "$tmp/twoballs.h" CAROM_LEAN_MAX_BODIES 2
@@ -836,6 +843,8 @@ for sw in POLYGONS DYNAMIC_POLYGONS POLYGON_POLYGON ROTATION FRICTION; do
     check "lean spinning box: CAROM_ENABLE_$sw 1" header_has "$tmp/out" "CAROM_ENABLE_$sw" 1
 done
 check "lean spinning box: CAROM_ENABLE_FORCES 0" header_has "$tmp/out" CAROM_ENABLE_FORCES 0
+check "lean spinning box: CAROM_ENABLE_GRAVITY 1" header_has "$tmp/out" CAROM_ENABLE_GRAVITY 1
+check "lean spinning box: CAROM_ENABLE_ANGLES 1" header_has "$tmp/out" CAROM_ENABLE_ANGLES 1
 # a constant force needs CAROM_ENABLE_FORCES
 sed 's/angular-velocity=3/force=1,0/' "$tmp/spinbox.scene" > "$tmp/forcebox.scene"
 run lean "$tmp/forcebox.scene"

@@ -442,7 +442,7 @@ static void write_state(FILE *f, const carom_world *w, int i, const char *prefix
     carom_body_get_state(w, i, &st);
     fprintf(f, "%s%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", prefix, i,
             (double)st.position.x, (double)st.position.y,
-            (double)carom_rot_angle(st.rotation), (double)st.velocity.x,
+            (double)scene_rot_angle(st.rotation), (double)st.velocity.x,
             (double)st.velocity.y, (double)st.angular_velocity);
 }
 
@@ -960,7 +960,7 @@ static void recorder_frame(recorder *r, const carom_world *w)
         carom_body_get_state(w, b, &st);
         p->x = st.position.x;
         p->y = st.position.y;
-        p->angle = carom_rot_angle(st.rotation);
+        p->angle = scene_rot_angle(st.rotation);
     }
     r->frames++;
 }
@@ -983,7 +983,7 @@ static render_pose pose_before(const carom_world *w, int id, double back)
     cy = (double)st.center.y - (double)st.velocity.y * back;
     p.x = (float)(cx + c * ox + s * oy); /* rotate the offset by -da */
     p.y = (float)(cy - s * ox + c * oy);
-    p.angle = (float)((double)carom_rot_angle(st.rotation) - da);
+    p.angle = (float)((double)scene_rot_angle(st.rotation) - da);
     return p;
 }
 
@@ -1828,6 +1828,13 @@ static int cmd_lean(int argc, char **argv)
     } else {
         lean_switch("FORCES", 0, "no body has a force or torque: gravity only");
     }
+    if (s.world.gravity.x != 0.0f || s.world.gravity.y != 0.0f)
+        lean_switch("GRAVITY", 1, "gravity (%g, %g)", (double)s.world.gravity.x,
+                    (double)s.world.gravity.y);
+    else
+        lean_switch("GRAVITY", 0, n.forced >= 0 ? "gravity (0, 0)"
+                                                : "gravity (0, 0) and no forces: nothing "
+                                                  "accelerates, so no quartic time of impact");
     lean_switch("EVENTS", events_on, "the method is %s", carom_method_name(s.world.method));
     if (sleep_on) {
         lean_body_ref(a, sizeof a, &s, n.sleep_body);
@@ -1884,6 +1891,23 @@ static int cmd_lean(int argc, char **argv)
                     s.body_count);
     lean_switch("STATUS_NAMES", 0, "status names are for messages; turn on if the program "
                                    "prints carom_status_string()");
+    {
+        int turned = -1, i;
+        for (i = 0; i < s.body_count && turned < 0; ++i) {
+            carom_rot q = s.bodies[i].def.rotation;
+            if (q.c != 1.0f || q.s != 0.0f || signbit(q.s))
+                turned = i;
+        }
+        if (spin_on)
+            lean_switch("ANGLES", 1, "rotation is on (the library turns bodies with them)");
+        else if (turned >= 0) {
+            lean_body_ref(a, sizeof a, &s, turned);
+            lean_switch("ANGLES", 1, "%s starts at an angle (the scene's angle= needs them)", a);
+        } else
+            lean_switch("ANGLES", 0, "every body starts at angle 0 and none turns; turn on if "
+                                     "the program calls carom_rot_from_angle() or "
+                                     "carom_rot_angle()");
+    }
 #ifdef CAROM_ENABLE_GROW
     lean_switch("GROW", 0, "the capacities below hold the scene; memory on demand needs an "
                            "allocator (turn on if the program gives one)");

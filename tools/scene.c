@@ -431,7 +431,13 @@ static int parse_body(parser *p, char *rest, scene *s)
     }
     if (sb.kind[0] == 'p' && !(seen & K_VERTS))
         return fail(p, "polygon: missing vertices=");
+#if CAROM_ENABLE_ANGLES
     d->rotation = carom_rot_from_angle(sb.angle);
+#else
+    if (sb.angle != 0.0f)
+        return fail(p, "angle=: this carom was built without CAROM_ENABLE_ANGLES "
+                       "(give the body no angle, or build with it on)");
+#endif
     st = carom_body_def_validate(d);
     if (st == CAROM_ERR_OUT_OF_RANGE) {
         char hint[200];
@@ -690,6 +696,14 @@ int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
     }
 #endif
     st = carom_world_def_validate(&wd);
+#if !CAROM_ENABLE_GRAVITY
+    if (st == CAROM_ERR_DISABLED && (wd.gravity.x != 0.0f || wd.gravity.y != 0.0f)) {
+        snprintf(err, errlen, "world: gravity=%g,%g: this carom was built without "
+                 "CAROM_ENABLE_GRAVITY (its gravity is 0,0)", (double)wd.gravity.x,
+                 (double)wd.gravity.y);
+        return -1;
+    }
+#endif
     if (st != CAROM_OK) {
         snprintf(err, errlen, "world: %s", carom_status_string(st));
         return -1;
@@ -718,4 +732,13 @@ int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
         return -1;
     }
     return 0;
+}
+
+float scene_rot_angle(carom_rot r)
+{
+#if CAROM_ENABLE_ANGLES
+    return carom_rot_angle(r);
+#else
+    return (float)atan2((double)r.s, (double)r.c);
+#endif
 }

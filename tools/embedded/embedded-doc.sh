@@ -164,6 +164,7 @@ fn_sum() {
         NF == 4 { s = $4; sub(/\..*/, "", s); if (s in want) t += $2 }
         END { print t + 0 }'
 }
+default_lib="$work/cfg/default/m4f.a"
 cradle_lib="$work/cfg/lean-cradle/m4f.a"
 gas_lib="$work/cfg/lean-gas/m4f.a"
 stacking="cr_solver_levels cr_solver_prime cr_solver_shock cr_one_sided cr_push_up cr_support_of cr_correct_shock"
@@ -315,23 +316,23 @@ $(fn_table "$cradle_lib")
 
 Finer switches, with the bytes of the symbols each removes (or would
 remove) from these two lean builds (nm of the M4F archives above; inlined
-helpers are counted in their callers, so these are lower bounds).
-\`CAROM_ENABLE_STACKING\`, \`CAROM_ENABLE_STATUS_NAMES\` and
-\`CAROM_ENABLE_GRID\` (every pair of boxes tested instead of the grid;
-\`carom lean\` turns it off up to 64 bodies) exist, and the lean builds above
-already leave out what they can; the other rows are proposals:
+helpers are counted in their callers, so these are lower bounds). The
+first rows exist, and the lean builds above already leave out what they
+can (their bytes are those of the default build, where the code is still
+in); the rows after them are proposals:
 
-| proposed switch | what it removes | when \`carom lean\` may turn it off | cradle | gas |
-| --- | --- | --- | --- | --- |
-| \`CAROM_ENABLE_STACKING\` | support order, cold-start priming and shock propagation ($(code_list "$stacking")) | gravity 0: these return at once today | $(fn_sum "$cradle_lib" "$stacking") | $(fn_sum "$gas_lib" "$stacking") |
-| \`CAROM_ENABLE_STATUS_NAMES\` | the text of \`carom_status_string\` (status.o, strings included) | always, unless the program prints statuses | $(status_o "$cradle_lib") | $(status_o "$gas_lib") |
-| \`CAROM_ENABLE_QUARTIC\` | the quartic time of impact of circles whose accelerations differ (\`cr_first_root4\`) | gravity 0 and no forces | $(fn_sum "$cradle_lib" "$quartic") | $(fn_sum "$gas_lib" "$quartic") |
-| (a fix) polygon-polygon TOI under \`CAROM_ENABLE_POLYGON_POLYGON\` | \`cr_toi_vertices_edges\` | with POLYGON_POLYGON | $(fn_sum "$cradle_lib" "$toi_pp") | $(fn_sum "$gas_lib" "$toi_pp") |
-| (a fix) waking under \`CAROM_ENABLE_SLEEP\` | \`cr_island_wake_touched\`, \`cr_island_wake\` | with SLEEP | $(fn_sum "$cradle_lib" "$wake") | $(fn_sum "$gas_lib" "$wake") |
-| weights and names only with \`CAROM_ENABLE_PROFILE\` | $(code_list "$profile_api") | always in a lean build | $(fn_sum "$cradle_lib" "$profile_api") | $(fn_sum "$gas_lib" "$profile_api") |
-| two-point block solve only with polygons | \`cr_lcp2\` (and its callers' block branches) | circles only: one point per contact | $(fn_sum "$cradle_lib" "$block") | $(fn_sum "$gas_lib" "$block") |
-| statics only as boxes (\`CAROM_ENABLE_GENERAL_POLYGONS\`) | the convexity and self-intersection checks and the polygon mass of \`cr_body_build\` (inlined: $(fn_sum "$gas_lib" cr_body_build) bytes in gas, $(fn_sum "$cradle_lib" cr_body_build) without polygons) | every polygon a box, none dynamic | - | ~$(($(fn_sum "$gas_lib" cr_body_build) - $(fn_sum "$cradle_lib" cr_body_build))) |
-| trigonometry helpers | \`carom_rot_from_angle\`, \`carom_rot_angle\` (trig.o; only the program calls them when rotation is off) | rotation off; or link with \`-ffunction-sections -Wl,--gc-sections\` | $(fn_sum "$cradle_lib" "$trig") | $(fn_sum "$gas_lib" "$trig") |
+| switch | what it removes | when \`carom lean\` turns it off | default | cradle | gas |
+| --- | --- | --- | --- | --- | --- |
+| \`CAROM_ENABLE_STACKING\` | support order, cold-start priming and shock propagation ($(code_list "$stacking")) | gravity 0 (they do nothing then) | $(fn_sum "$default_lib" "$stacking") | - | - |
+| \`CAROM_ENABLE_STATUS_NAMES\` | the text of \`carom_status_string\` (one generic string left) | always, unless the program prints statuses | - | - | - |
+| \`CAROM_ENABLE_GRID\` | the broadphase grid (every pair of boxes is tested instead) | up to 64 bodies | - | - | - |
+| \`CAROM_ENABLE_GRAVITY\` | with \`CAROM_ENABLE_FORCES\` off too: the quartic time of impact of bodies whose accelerations differ ($(code_list "$quartic")); and the stacking passes | gravity (0, 0) | $(fn_sum "$default_lib" "$quartic") | - | - |
+| \`CAROM_ENABLE_ANGLES\` | the angle helpers ($(code_list "$trig")), and with rotation off carom's sine and cosine (\`cr_rot_from_angle\`) | rotation off and every body at angle 0 | $(fn_sum "$default_lib" "$trig cr_rot_from_angle") | - | - |
+| (circles only) the two-point block solve | \`cr_lcp2\` and its callers' block branches: compiled only when a contact can have two points (polygons) | with \`CAROM_ENABLE_POLYGONS\` | $(fn_sum "$default_lib" "$block") | - | - |
+| (a fix) polygon-polygon TOI under \`CAROM_ENABLE_POLYGON_POLYGON\` | \`cr_toi_vertices_edges\` | with POLYGON_POLYGON | $(fn_sum "$default_lib" "$toi_pp") | $(fn_sum "$cradle_lib" "$toi_pp") | $(fn_sum "$gas_lib" "$toi_pp") |
+| (a fix) waking under \`CAROM_ENABLE_SLEEP\` | \`cr_island_wake_touched\`, \`cr_island_wake\` | with SLEEP | $(fn_sum "$default_lib" "$wake") | $(fn_sum "$cradle_lib" "$wake") | $(fn_sum "$gas_lib" "$wake") |
+| weights and names only with \`CAROM_ENABLE_PROFILE\` | $(code_list "$profile_api") | always in a lean build | $(fn_sum "$default_lib" "$profile_api") | $(fn_sum "$cradle_lib" "$profile_api") | $(fn_sum "$gas_lib" "$profile_api") |
+| statics only as boxes (\`CAROM_ENABLE_GENERAL_POLYGONS\`) | the convexity and self-intersection checks and the polygon mass of \`cr_body_build\` (inlined: $(fn_sum "$gas_lib" cr_body_build) bytes in gas, $(fn_sum "$cradle_lib" cr_body_build) without polygons) | every polygon a box, none dynamic | - | - | ~$(($(fn_sum "$gas_lib" cr_body_build) - $(fn_sum "$cradle_lib" cr_body_build))) |
 
 ## Stack
 

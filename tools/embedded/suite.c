@@ -31,7 +31,14 @@ void suite_body_def(const suite_body *b, carom_body_def *d)
     }
     d->position.x = b->px;
     d->position.y = b->py;
+#if CAROM_ENABLE_ANGLES
     d->rotation = carom_rot_from_angle(b->angle);
+#else
+    if (b->angle != 0.0f) { /* refused: carom_body_def_validate says why */
+        d->rotation.c = 0.0f;
+        d->rotation.s = 0.0f;
+    }
+#endif
     d->velocity.x = b->vx;
     d->velocity.y = b->vy;
     d->angular_velocity = b->w;
