@@ -270,10 +270,24 @@ static void cr_pair_search(carom_world *w, int k, float t0)
     if (cr_le(sep, tol)) {
         /* touching now: an impact at once if approaching fast; otherwise
          * a contact for the solver */
-        approach = cr_approach_speed(&A, &B, t0, slop, &scale);
+        float recede, t1;
+        approach = cr_approach_speed(&A, &B, t0, slop, &scale, &recede);
         if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale)))
             p->toi = t0;
-        else {
+        else if (cr_gt(recede, cr_impact_speed(w, p->a, p->b, scale)) &&
+                 cr_lt(t1 = cr_add(t0, cr_div(cr_mul(2.0f, slop), recede)), dt) &&
+                 (found = cr_time_of_impact(&A, &B, t1, dt, tol, &toi)) != 0 &&
+                 (found == CR_TOI_RESUME ||
+                  cr_gt(cr_approach_speed(&A, &B, toi, slop, &scale, 0),
+                        cr_impact_speed(w, p->a, p->b, scale)))) {
+            /* every touching point leaves fast (a body rebounding off a
+             * corner): where they have left, another part of the pair may
+             * still come down (the far corner of a box landing nearly
+             * flat): that is an impact of its own, at its instant */
+            p->toi = toi;
+            if (found == CR_TOI_RESUME)
+                p->met |= CR_PAIR_RESUME;
+        } else {
             p->met |= CR_PAIR_MET;
             slow = 1;
         }
@@ -285,7 +299,7 @@ static void cr_pair_search(carom_world *w, int k, float t0)
     } else if (found) {
         /* arriving slower than the rest speed is coming to rest, not an
          * impact: the contact solver takes it */
-        approach = cr_approach_speed(&A, &B, toi, slop, &scale);
+        approach = cr_approach_speed(&A, &B, toi, slop, &scale, 0);
         if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale)))
             p->toi = toi;
         else {

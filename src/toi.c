@@ -310,11 +310,13 @@ static int cr_toi_point(cr_v2 p, cr_v2 u, cr_v2 q, float R, float hi, float *s)
 /* Fastest normal approach of A and B at local time t over the points of
  * their manifold within `reach`, and the speed scale of the pair. */
 float cr_approach_speed(const cr_mover *A, const cr_mover *B, float t,
-                            float reach, float *scale)
+                            float reach, float *scale, float *recede)
 {
     cr_v2 xa, xb, va, vb;
     cr_rot qa, qb;
     float wa, wb, fastest = 0.0f;
+    if (recede)
+        *recede = 0.0f;
     cr_manifold m;
     int k;
     cr_mover_pose(A, t, &xa, &qa);
@@ -339,6 +341,8 @@ float cr_approach_speed(const cr_mover *A, const cr_mover *B, float t,
         cr_v2 dv = cr_vsub(cr_vadd(vb, cr_vcross_sv(wb, rb)),
                            cr_vadd(va, cr_vcross_sv(wa, ra)));
         fastest = cr_max(fastest, cr_neg(cr_vdot(dv, m.n)));
+        if (recede)
+            *recede = k == 0 ? cr_vdot(dv, m.n) : cr_min(*recede, cr_vdot(dv, m.n));
     }
     return fastest;
 }
@@ -453,7 +457,7 @@ static int cr_toi_advance(const cr_mover *A, const cr_mover *B, float t0,
             return 0;
         if (cr_le(sep, tol)) {
             float scale;
-            float approach = cr_approach_speed(A, B, t, cr_mul(2.0f, tol), &scale);
+            float approach = cr_approach_speed(A, B, t, cr_mul(2.0f, tol), &scale, 0);
             if (cr_gt(approach, cr_mul(CR_APPROACH_REL_TOL, scale))) {
                 *out = cr_sub(t, t0);
                 return 1;

@@ -42,9 +42,11 @@ int cr_cannot_meet(const cr_mover *A, const cr_mover *B, float t0, float t1,
 
 /* Fastest normal approach of A and B at local time t over the points of
  * their manifold within `reach` (0 if none), and in *scale the speed scale
- * of the pair (linear speeds plus spin times extent). */
+ * of the pair (linear speeds plus spin times extent); in *recede (unless
+ * NULL) the slowest separation speed over those points (0 if none; < 0 if
+ * one approaches). */
 float cr_approach_speed(const cr_mover *A, const cr_mover *B, float t,
-                        float reach, float *scale);
+                        float reach, float *scale, float *recede);
 
 /*
  * First instant in [t0, t1] (local step time) at which A and B, apart at
