@@ -34,17 +34,6 @@
                                    gravity only */
 #endif
 
-#ifndef CAROM_ENABLE_GRAVITY
-#define CAROM_ENABLE_GRAVITY 1 /**< world gravity; off: the world's gravity
-                                    must be (0, 0) (CAROM_ERR_DISABLED
-                                    otherwise; the default becomes 0), the
-                                    stacking passes are left out, and with
-                                    CAROM_ENABLE_FORCES off too nothing
-                                    accelerates, so the quartic time of
-                                    impact is left out (top-down tables,
-                                    space) */
-#endif
-
 #ifndef CAROM_ENABLE_EVENTS
 #define CAROM_ENABLE_EVENTS 1 /**< in-step impact timing (methods "events"
                                    and "first-impact"); off: only the
@@ -83,6 +72,16 @@
 
 #ifndef CAROM_ENABLE_QUERIES
 #define CAROM_ENABLE_QUERIES 1 /**< box overlap, ray cast and point queries */
+#endif
+
+#ifndef CAROM_ENABLE_BODY_EDITS
+#define CAROM_ENABLE_BODY_EDITS 1 /**< changing a body after it is added:
+                                       carom_world_remove_body and the
+                                       carom_body_set_* / carom_body_apply_*
+                                       calls (not user data); off: they
+                                       return CAROM_ERR_DISABLED, about
+                                       2 KB less code, for programs that
+                                       only add bodies and step */
 #endif
 
 #ifndef CAROM_ENABLE_TOUCH_EVENTS
@@ -216,9 +215,7 @@
 #endif
 
 #ifndef CAROM_DEFAULT_GRAVITY_Y
-#define CAROM_DEFAULT_GRAVITY_Y (-10.0f) /**< gravity (0, g_y), m/s^2 (0
-                                             with CAROM_ENABLE_GRAVITY
-                                             off) */
+#define CAROM_DEFAULT_GRAVITY_Y (-10.0f) /**< gravity (0, g_y), m/s^2 */
 #endif
 
 #ifndef CAROM_DEFAULT_MAX_BODIES

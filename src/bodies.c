@@ -108,6 +108,8 @@ carom_status carom_world_remove_body(carom_world *w, int id)
 {
     carom_status st;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
     st = cr_slot_of(w, id, &s);
@@ -184,6 +186,8 @@ carom_status carom_body_set_velocity(carom_world *w, int id, carom_vec2 velocity
 {
     carom_status st;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     st = cr_movable_slot(w, id, &s);
     if (st != CAROM_OK)
         return st;
@@ -203,6 +207,8 @@ carom_status carom_body_set_angular_velocity(carom_world *w, int id, float angul
 {
     carom_status st;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     st = cr_movable_slot(w, id, &s);
     if (st != CAROM_OK)
         return st;
@@ -231,6 +237,8 @@ carom_status carom_body_set_transform(carom_world *w, int id, carom_vec2 positio
     cr_v2 x;
     float len;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
     st = cr_slot_of(w, id, &s);
@@ -284,6 +292,8 @@ carom_status carom_body_apply_impulse(carom_world *w, int id, carom_vec2 impulse
     cr_v2 v;
     float om;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
     st = cr_slot_of(w, id, &s);
@@ -315,6 +325,8 @@ carom_status carom_body_apply_angular_impulse(carom_world *w, int id, float impu
 {
     carom_status st;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
     st = cr_slot_of(w, id, &s);
@@ -385,6 +397,8 @@ carom_status carom_body_apply_force(carom_world *w, int id, carom_vec2 force,
     carom_status st;
     float tq = 0.0f;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
     st = cr_slot_of(w, id, &s);
@@ -405,6 +419,8 @@ carom_status carom_body_apply_torque(carom_world *w, int id, float torque)
 {
     carom_status st;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
     st = cr_slot_of(w, id, &s);
@@ -425,6 +441,8 @@ carom_status carom_body_set_restitution(carom_world *w, int id, float e)
 {
     carom_status st;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
     st = cr_slot_of(w, id, &s);
@@ -442,6 +460,8 @@ carom_status carom_body_set_friction(carom_world *w, int id, float mu)
 {
     carom_status st;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
     st = cr_slot_of(w, id, &s);
@@ -485,6 +505,8 @@ carom_status carom_body_set_filter(carom_world *w, int id, uint32_t category, ui
 {
     carom_status st;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
     st = cr_slot_of(w, id, &s);
@@ -557,6 +579,8 @@ carom_status carom_body_set_force(carom_world *w, int id, carom_vec2 force,
 {
     carom_status st;
     int s;
+    if (!CAROM_ENABLE_BODY_EDITS) /* compiled out: the rest is dead code */
+        return w ? CAROM_ERR_DISABLED : CAROM_ERR_NULL;
     if (!w)
         return CAROM_ERR_NULL;
 #if CAROM_ENABLE_FORCES

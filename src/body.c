@@ -188,6 +188,8 @@ carom_status carom_body_def_set_box(carom_body_def *def, float hx, float hy)
 {
     if (!def)
         return CAROM_ERR_NULL;
+    if (!CAROM_ENABLE_POLYGONS) /* a box is a polygon */
+        return CAROM_ERR_DISABLED;
     if (!cr_finite(hx) || !cr_finite(hy))
         return CAROM_ERR_NOT_FINITE;
     if (!cr_gt(hx, 0.0f) || !cr_gt(hy, 0.0f))
@@ -210,6 +212,7 @@ carom_status carom_body_def_validate(const carom_body_def *def)
     return cr_body_build(def, &hot, &info);
 }
 
+#if CAROM_ENABLE_FORCES
 int cr_accel_in_range(const cr_body_info *info, cr_v2 force, float torque)
 {
     float fmax = cr_mul(CAROM_LIMIT_MAX_ACCEL, info->m);
@@ -221,6 +224,7 @@ int cr_accel_in_range(const cr_body_info *info, cr_v2 force, float torque)
     /* alpha times extent is the tangential acceleration of the rim */
     return cr_le(cr_mul(cr_abs(torque), info->shape.extent), tmax);
 }
+#endif
 
 /* The shape of `def`, about its centroid; *area and *unit_inertia (polar
  * moment per unit density) for the mass. */
@@ -421,8 +425,10 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
 #if CAROM_ENABLE_ROTATION
         b.inv_I = cr_div(1.0f, in.I);
 #endif
+#if CAROM_ENABLE_FORCES /* (without, force and torque are 0: checked above) */
         if (!cr_accel_in_range(&in, def->force, def->torque))
             return CAROM_ERR_OUT_OF_RANGE;
+#endif
     } else if (def->type == CAROM_BODY_STATIC) {
         b.v = cr_v(0.0f, 0.0f);
         b.w = 0.0f;

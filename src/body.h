@@ -31,6 +31,11 @@
  * memory. A copy of the whole array is kept at the start of each step, so
  * a failed step can be undone exactly.
  */
+/* Is a shape kind, or a body, a circle? Always, in a build without
+ * polygons (so the polygon branches compile away). */
+#define CR_KIND_CIRCLE(kind) (!CAROM_ENABLE_POLYGONS || (kind) == CAROM_SHAPE_CIRCLE)
+#define CR_BODY_IS_CIRCLE(b) (!CAROM_ENABLE_POLYGONS || ((b)->flags & CR_BODY_CIRCLE))
+
 typedef struct cr_body {
     cr_v2 x;      /* centre of mass, world */
     cr_rot q;     /* rotation */
@@ -100,9 +105,11 @@ void cr_shape_box(const cr_shape *s, cr_v2 x, cr_rot q, cr_box *out);
 /* World position of the definition's origin: centre minus rotated offset. */
 cr_v2 cr_body_origin(const cr_body *b, const cr_body_info *info);
 
+#if CAROM_ENABLE_FORCES
 /* The acceleration limit check of a force and torque on a body: 0 if
  * a = F / m or alpha times extent is beyond CAROM_LIMIT_MAX_ACCEL. */
 int cr_accel_in_range(const cr_body_info *info, cr_v2 force, float torque);
+#endif
 
 /* The smallest c^2 + s^2 of a rotation pair that normalizes to a unit
  * pair (FLT_MIN: below it the square is denormal and the square root too

@@ -24,14 +24,12 @@
  * block (1 - cos^2 of the angle between the two points' impulse rows). */
 #define CR_BLOCK_MIN_DET 1.0e-3f
 
-static cr_v2 cr_tangent(cr_v2 n) { return cr_vright(n); }
-
 /* Lever arm of an impulse along dir at r from the centre of a body: r x dir,
  * except for the normal of a circle, where it is 0 by geometry (rounding
  * would otherwise spin every circle a little at every contact). */
 static float cr_lever(const cr_shape *s, cr_v2 r, cr_v2 dir, int normal)
 {
-    if (normal && s->kind == CAROM_SHAPE_CIRCLE)
+    if (normal && CR_KIND_CIRCLE(s->kind))
         return 0.0f;
     return cr_vcross(r, dir);
 }
@@ -58,7 +56,9 @@ void cr_contact_from_manifold(const carom_world *w, cr_contact *c,
 {
     const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
     const cr_body_info *ia = &w->info[c->a], *ib = &w->info[c->b];
-    cr_v2 t = cr_tangent(m->n);
+#if CAROM_ENABLE_FRICTION
+    cr_v2 t = cr_vright(m->n); /* the friction direction */
+#endif
     int k;
     c->n = m->n;
     c->count = m->count;
@@ -79,7 +79,11 @@ void cr_contact_from_manifold(const carom_world *w, cr_contact *c,
         rna = cr_lever(&ia->shape, p->ra, m->n, 1);
         rnb = cr_lever(&ib->shape, p->rb, m->n, 1);
         p->mass_n = cr_effective_mass(A, B, rna, rnb);
+#if CAROM_ENABLE_FRICTION /* (only friction reads it) */
         p->mass_t = cr_effective_mass(A, B, cr_vcross(p->ra, t), cr_vcross(p->rb, t));
+#else
+        p->mass_t = 0.0f;
+#endif
         /* the approach restitution uses: the discrete method starts from
          * the step's start (Box2D v3), the events methods only count one
          * captured when the point first pushes in a solve (their impacts

@@ -462,7 +462,7 @@ static carom_status cr_regrow(carom_world *w, int i, float t)
 
 static float cr_lever_n(const carom_world *w, int body, cr_v2 r, cr_v2 n)
 {
-    return (w->bodies[body].flags & CR_BODY_CIRCLE) ? 0.0f : cr_vcross(r, n);
+    return CR_BODY_IS_CIRCLE(&w->bodies[body]) ? 0.0f : cr_vcross(r, n);
 }
 
 static void cr_row_apply(carom_world *w, const cr_impact_row *r, int k,
@@ -578,7 +578,7 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
 static void cr_unknown_dir(const cr_impact_row *r, int kind, cr_v2 *d,
                            float *la, float *lb)
 {
-    if (kind < 2) {
+    if (kind < 2 || !CAROM_ENABLE_FRICTION) { /* (friction unknowns: kinds 2 to 4) */
         *d = r->n;
         *la = r->la[kind];
         *lb = r->lb[kind];
@@ -751,6 +751,7 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
                 return 0;
         }
     }
+#if CAROM_ENABLE_FRICTION /* (friction unknowns exist only with it) */
     for (i = 0; i < m; ++i) {
         const cr_impact_row *r = &rows[U_ROW(i)];
         float pn0 = r->pn[0], pn1 = CR_TWO_POINTS && r->count == 2 ? r->pn[CR_MANIFOLD_POINTS - 1] : 0.0f, pt;
@@ -771,6 +772,7 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
         if (cr_gt(cr_abs(pt), cr_mul(r->friction, U_KIND(i) == 2 ? cr_add(pn0, pn1) : pn0)))
             return 0;
     }
+#endif
     /* apply it */
     for (i = 0; i < m; ++i) {
         cr_impact_row *r = &rows[U_ROW(i)];
@@ -780,12 +782,14 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
         cr_row_apply(w, r, 0, d, la, lb, x[i]);
         if (U_KIND(i) < 2)
             r->pn[U_KIND(i)] = cr_add(r->pn[U_KIND(i)], x[i]);
+#if CAROM_ENABLE_FRICTION
         else if (U_KIND(i) >= 3)
             r->pt[U_KIND(i) - 3] = cr_add(r->pt[U_KIND(i) - 3], x[i]);
+#endif
     }
-    for (i = 0; i < m; ++i) {
+    for (i = 0; CR_TWO_POINTS && CAROM_ENABLE_FRICTION && i < m; ++i) {
         cr_impact_row *r = &rows[U_ROW(i)];
-        if (CR_TWO_POINTS && U_KIND(i) == 2) {
+        if (U_KIND(i) == 2) {
             float pt = cr_add(cr_add(r->pt[0], r->pt[1]), x[i]);
             float pn = cr_add(r->pn[0], r->pn[1]);
             r->pt[0] = cr_mul(cr_gt(pn, 0.0f) ? cr_div(r->pn[0], pn) : 0.5f, pt);
@@ -861,7 +865,10 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
     const cr_body_info *ia = &w->info[p->a], *ib = &w->info[p->b];
     float scale, threshold, wa, wb;
     cr_manifold m;
-    cr_v2 t, va, vb;
+#if CAROM_ENABLE_FRICTION
+    cr_v2 t;
+#endif
+    cr_v2 va, vb;
     int j;
     /* touching within the slop: the simultaneous rows */
     if (!cr_collide(&ia->shape, A->x, A->q, &ib->shape, B->x, B->q, w->scale.slop,
@@ -875,10 +882,10 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
     r->restitution = cr_max(ia->restitution, ib->restitution);
 #if CAROM_ENABLE_FRICTION
     r->friction = cr_sqrt(cr_mul(ia->friction, ib->friction));
+    t = cr_vright(m.n);
 #else
     r->friction = 0.0f;
 #endif
-    t = cr_vright(m.n);
     r->approach = 0.0f;
     scale = cr_add(cr_add(cr_vlen(A->v), cr_vlen(B->v)),
                    cr_add(cr_mul(cr_abs(A->w), ia->shape.extent),
@@ -890,8 +897,12 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
         r->rb[j] = cr_vsub(m.pts[j].p, B->x);
         r->mass_n[j] = cr_effective_mass(A, B, cr_lever_n(w, p->a, r->ra[j], m.n),
                                          cr_lever_n(w, p->b, r->rb[j], m.n));
+#if CAROM_ENABLE_FRICTION /* (only friction reads it) */
         r->mass_t[j] = cr_effective_mass(A, B, cr_vcross(r->ra[j], t),
                                          cr_vcross(r->rb[j], t));
+#else
+        r->mass_t[j] = 0.0f;
+#endif
         r->pn[j] = 0.0f;
         r->pt[j] = 0.0f;
         /* the approach before the instant, for now */

@@ -368,7 +368,7 @@ int cr_collide(const cr_shape *A, cr_v2 xa, cr_rot qa, const cr_shape *B,
 float cr_separation(const cr_shape *A, cr_v2 xa, cr_rot qa, const cr_shape *B,
                     cr_v2 xb, cr_rot qb)
 {
-    if (A->kind == CAROM_SHAPE_CIRCLE && B->kind == CAROM_SHAPE_CIRCLE)
+    if (CR_KIND_CIRCLE(A->kind) && CR_KIND_CIRCLE(B->kind))
         return cr_sub(cr_vlen(cr_vsub(xb, xa)), cr_add(A->radius, B->radius));
 #if !CAROM_ENABLE_POLYGONS
     (void)qa;

@@ -155,7 +155,7 @@ float cr_contact_approach(const carom_world *w, const cr_contact *c)
 
 static int cr_turns_fast(const carom_world *w, const cr_body *b)
 {
-    return !(b->flags & CR_BODY_CIRCLE) &&
+    return !CR_BODY_IS_CIRCLE(b) &&
            cr_gt(cr_mul(cr_abs(b->w), w->def.dt), CR_SOLVER_MAX_TURN);
 }
 
@@ -236,7 +236,7 @@ static void cr_apply(cr_body *A, cr_body *B, float la, float lb, cr_v2 dir,
 
 static float cr_normal_lever(const carom_world *w, int body, cr_v2 r, cr_v2 n)
 {
-    return (w->bodies[body].flags & CR_BODY_CIRCLE) ? 0.0f : cr_vcross(r, n);
+    return CR_BODY_IS_CIRCLE(&w->bodies[body]) ? 0.0f : cr_vcross(r, n);
 }
 
 void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s)
@@ -258,7 +258,9 @@ void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s)
     for (i = 0; i < w->contact_count; ++i) {
         const cr_contact *c = &w->contacts[i];
         cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+#if CAROM_ENABLE_FRICTION
         cr_v2 t = cr_vright(c->n);
+#endif
         if (!(c->flags & CR_CONTACT_SOLVE))
             continue;
         for (k = 0; k < c->count; ++k) {
@@ -266,8 +268,10 @@ void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s)
             if (!cr_eq(p->pn, 0.0f))
                 cr_apply(A, B, cr_normal_lever(w, c->a, p->ra, c->n),
                          cr_normal_lever(w, c->b, p->rb, c->n), c->n, p->pn);
+#if CAROM_ENABLE_FRICTION /* (without it every tangent impulse is 0) */
             if (!cr_eq(p->pt, 0.0f))
                 cr_apply(A, B, cr_vcross(p->ra, t), cr_vcross(p->rb, t), t, p->pt);
+#endif
         }
     }
 }
@@ -769,7 +773,7 @@ static int cr_supports(const cr_contact *c, int lower, cr_v2 up)
 
 static int cr_up(const carom_world *w, cr_v2 *up)
 {
-#if !CAROM_ENABLE_STACKING || !CAROM_ENABLE_GRAVITY
+#if !CAROM_ENABLE_STACKING
     /* no support order, priming or shock propagation (what they do for
      * stacks under gravity is compiled out; without gravity they do
      * nothing anyway) */

@@ -64,7 +64,7 @@ static int cr_spins(const cr_mover *m)
 
 static int cr_rotates(const cr_mover *m)
 {
-    return m->s->kind == CAROM_SHAPE_POLYGON && cr_spins(m);
+    return !CR_KIND_CIRCLE(m->s->kind) && cr_spins(m);
 }
 
 static cr_v2 cr_position_at(const cr_mover *m, float t)
@@ -111,7 +111,7 @@ void cr_swept_box(const cr_mover *m, float t0, float t1, float margin,
             }
         }
     }
-    if (m->s->kind == CAROM_SHAPE_CIRCLE || cr_rotates(m)) {
+    if (CR_KIND_CIRCLE(m->s->kind) || cr_rotates(m)) {
         float e = cr_add(m->s->extent, margin);
         out->lo_x = cr_sub(lo[0], e);
         out->hi_x = cr_add(hi[0], e);
@@ -208,7 +208,6 @@ int cr_first_down_root2(float c0, float c1, float c2, float hi, float *out)
     return 0;
 }
 
-#if CR_ACCELERATES
 static float cr_poly4(const float c[5], float s)
 {
     return cr_add(c[0], cr_mul(s, cr_add(c[1], cr_mul(s, cr_add(c[2],
@@ -279,7 +278,6 @@ int cr_first_root4(const float c[5], float hi, float *out)
     *out = a; /* out of budget: nothing before a, maybe something after */
     return 1;
 }
-#endif /* CR_ACCELERATES */
 
 /* ---- shape pairs -------------------------------------------------------------- */
 
@@ -291,7 +289,6 @@ static int cr_toi_point(cr_v2 p, cr_v2 u, cr_v2 q, float R, float hi, float *s)
     float c0 = cr_mul(gap, cr_add(len, R)); /* |p|^2 - R^2 without cancelling */
     if (!cr_gt(gap, 0.0f))
         return 0;
-#if CR_ACCELERATES
     if (!cr_eq(q.x, 0.0f) || !cr_eq(q.y, 0.0f)) {
         float c[5];
         c[0] = c0;
@@ -301,9 +298,6 @@ static int cr_toi_point(cr_v2 p, cr_v2 u, cr_v2 q, float R, float hi, float *s)
         c[4] = cr_vdot(q, q);
         return cr_first_root4(c, hi, s);
     }
-#else
-    (void)q; /* nothing accelerates in this build: q = 0 */
-#endif
     return cr_first_down_root2(c0, cr_mul(2.0f, cr_vdot(p, u)), cr_vdot(u, u), hi, s);
 }
 
@@ -484,7 +478,7 @@ int cr_time_of_impact(const cr_mover *A, const cr_mover *B, float t0, float t1,
     int hit = 0;
     if (!cr_gt(hi, 0.0f))
         return 0;
-    if (A->s->kind == CAROM_SHAPE_CIRCLE && B->s->kind == CAROM_SHAPE_CIRCLE) {
+    if (CR_KIND_CIRCLE(A->s->kind) && CR_KIND_CIRCLE(B->s->kind)) {
         cr_v2 p, u, q;
         cr_relative_motion(A, B, t0, &p, &u, &q);
         hit = cr_toi_point(p, u, q, cr_add(A->s->radius, B->s->radius), hi, &s);

@@ -18,16 +18,10 @@ typedef struct cr_mover {
  * Returns 0 if none (also for non-finite coefficients). */
 int cr_first_down_root2(float c0, float c1, float c2, float hi, float *out);
 
-/* Can relative motion be accelerated? Not without gravity and forces:
- * every body then moves at constant velocity between contacts. */
-#define CR_ACCELERATES (CAROM_ENABLE_GRAVITY || CAROM_ENABLE_FORCES)
-
-#if CR_ACCELERATES
 /* Earliest root of c0 + c1 s + ... + c4 s^4 in [0, hi], c0 > 0; bounded
  * work and storage whatever the input (non-finite: no root). May return
  * an instant before the root (never after) when its budget runs out. */
 int cr_first_root4(const float c[5], float hi, float *out);
-#endif
 
 /* The box a body's shape sweeps over local times [t0, t1], grown by
  * margin. */

@@ -41,11 +41,7 @@
 carom_world_def carom_default_world_def(void)
 {
     carom_world_def d;
-#if CAROM_ENABLE_GRAVITY
     d.gravity = cr_v(0.0f, CAROM_DEFAULT_GRAVITY_Y);
-#else
-    d.gravity = cr_v(0.0f, 0.0f);
-#endif
     d.dt = CAROM_DEFAULT_DT;
 #if CAROM_ENABLE_EVENTS
     d.method = CAROM_METHOD_EVENTS;
@@ -98,10 +94,6 @@ carom_status carom_world_def_validate(const carom_world_def *d)
         return CAROM_ERR_BAD_DT;
     if (!cr_v2_within(d->gravity, CAROM_LIMIT_MAX_ACCEL))
         return CAROM_ERR_OUT_OF_RANGE;
-#if !CAROM_ENABLE_GRAVITY
-    if (!cr_eq(d->gravity.x, 0.0f) || !cr_eq(d->gravity.y, 0.0f))
-        return CAROM_ERR_DISABLED;
-#endif
     if (d->max_bodies <= 0 || d->max_bodies > CR_MAX_BODIES ||
         d->max_pairs < 0 || d->max_pairs > CR_MAX_CAPACITY ||
         d->max_contacts < 0 || d->max_contacts > CR_MAX_CAPACITY ||
@@ -207,7 +199,8 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
 #define CR_PLACE(field, count, type)                                           \
     do {                                                                       \
         size_t n_ = (size_t)(count);                                           \
-        if (n_ > (limit - at) / sizeof(type))                                  \
+        /* at <= limit and n_ * size <= limit: the sum cannot wrap */          \
+        if (at > limit || n_ > limit / sizeof(type))                           \
             return 0;                                                          \
         l->field = at;                                                         \
         at += cr_round_up(n_ * sizeof(type));                                  \
@@ -612,7 +605,7 @@ static int cr_escaped(const carom_world *w, int s)
     if (cr_ge(cr_sub(b->x.x, sh->extent), g->lo_x) && cr_le(cr_add(b->x.x, sh->extent), g->hi_x) &&
         cr_ge(cr_sub(b->x.y, sh->extent), g->lo_y) && cr_le(cr_add(b->x.y, sh->extent), g->hi_y))
         return 0;
-    if (sh->kind == CAROM_SHAPE_CIRCLE)
+    if (CR_KIND_CIRCLE(sh->kind))
         return 1;
     cr_shape_box(sh, b->x, b->q, &e);
     return cr_lt(e.lo_x, g->lo_x) || cr_gt(e.hi_x, g->hi_x) || cr_lt(e.lo_y, g->lo_y) ||

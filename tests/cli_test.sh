@@ -771,7 +771,7 @@ expect_rc 0 "lean of two frictionless balls"
 cp "$tmp/out" "$tmp/twoballs.h"
 check "lean: nothing on stderr" test ! -s "$tmp/err"
 for sw in POLYGONS DYNAMIC_POLYGONS POLYGON_POLYGON ROTATION FRICTION FORCES SLEEP KINEMATIC \
-    GRAVITY ANGLES; do
+    ANGLES BODY_EDITS; do
     check "lean two balls: CAROM_ENABLE_$sw 0" header_has "$tmp/twoballs.h" "CAROM_ENABLE_$sw" 0
 done
 # an angle without rotation keeps the angle helpers (the scene's angle= needs them)
@@ -843,7 +843,6 @@ for sw in POLYGONS DYNAMIC_POLYGONS POLYGON_POLYGON ROTATION FRICTION; do
     check "lean spinning box: CAROM_ENABLE_$sw 1" header_has "$tmp/out" "CAROM_ENABLE_$sw" 1
 done
 check "lean spinning box: CAROM_ENABLE_FORCES 0" header_has "$tmp/out" CAROM_ENABLE_FORCES 0
-check "lean spinning box: CAROM_ENABLE_GRAVITY 1" header_has "$tmp/out" CAROM_ENABLE_GRAVITY 1
 check "lean spinning box: CAROM_ENABLE_ANGLES 1" header_has "$tmp/out" CAROM_ENABLE_ANGLES 1
 # a constant force needs CAROM_ENABLE_FORCES
 sed 's/angular-velocity=3/force=1,0/' "$tmp/spinbox.scene" > "$tmp/forcebox.scene"

@@ -1828,13 +1828,6 @@ static int cmd_lean(int argc, char **argv)
     } else {
         lean_switch("FORCES", 0, "no body has a force or torque: gravity only");
     }
-    if (s.world.gravity.x != 0.0f || s.world.gravity.y != 0.0f)
-        lean_switch("GRAVITY", 1, "gravity (%g, %g)", (double)s.world.gravity.x,
-                    (double)s.world.gravity.y);
-    else
-        lean_switch("GRAVITY", 0, n.forced >= 0 ? "gravity (0, 0)"
-                                                : "gravity (0, 0) and no forces: nothing "
-                                                  "accelerates, so no quartic time of impact");
     lean_switch("EVENTS", events_on, "the method is %s", carom_method_name(s.world.method));
     if (sleep_on) {
         lean_body_ref(a, sizeof a, &s, n.sleep_body);
@@ -1914,6 +1907,11 @@ static int cmd_lean(int argc, char **argv)
 #endif
 #ifdef CAROM_ENABLE_QUERIES
     lean_switch("QUERIES", 0, "stepping makes no query; turn on if the program calls them");
+#endif
+#ifdef CAROM_ENABLE_BODY_EDITS
+    lean_switch("BODY_EDITS", 0, "stepping changes no body from outside; turn on if the program "
+                                 "sets velocities or transforms, applies impulses or forces, "
+                                 "or removes bodies");
 #endif
 #ifdef CAROM_ENABLE_TOUCH_EVENTS
     lean_switch("TOUCH_EVENTS", 0, "stepping needs no touch reports; turn on if the program "

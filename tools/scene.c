@@ -696,14 +696,6 @@ int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
     }
 #endif
     st = carom_world_def_validate(&wd);
-#if !CAROM_ENABLE_GRAVITY
-    if (st == CAROM_ERR_DISABLED && (wd.gravity.x != 0.0f || wd.gravity.y != 0.0f)) {
-        snprintf(err, errlen, "world: gravity=%g,%g: this carom was built without "
-                 "CAROM_ENABLE_GRAVITY (its gravity is 0,0)", (double)wd.gravity.x,
-                 (double)wd.gravity.y);
-        return -1;
-    }
-#endif
     if (st != CAROM_OK) {
         snprintf(err, errlen, "world: %s", carom_status_string(st));
         return -1;

@@ -174,6 +174,7 @@ wake="cr_island_wake_touched cr_island_wake"
 profile_api="carom_op_weights_preset cr_presets carom_op_name carom_phase_name cr_op_names cr_phase_names carom_profile_cost carom_profile_reset"
 block="cr_lcp2"
 trig="carom_rot_from_angle carom_rot_angle cr_atan_unit"
+edits="carom_world_remove_body carom_body_set_velocity carom_body_set_angular_velocity carom_body_set_transform carom_body_apply_impulse carom_body_apply_angular_impulse carom_body_apply_force carom_body_apply_torque carom_body_set_restitution carom_body_set_friction carom_body_set_filter carom_body_set_force cr_wake_neighbours cr_forget_body"
 # code_list "NAME ...": `NAME`, `NAME` ... for the document
 code_list() { echo "$1" | awk '{ for (i = 1; i <= NF; i++) printf "%s`%s`", (i > 1 ? ", " : ""), $i }'; }
 status_o() { arm-none-eabi-size "$1" | awk '$6 == "status.o" { print $1 }'; }
@@ -326,9 +327,10 @@ in); the rows after them are proposals:
 | \`CAROM_ENABLE_STACKING\` | support order, cold-start priming and shock propagation ($(code_list "$stacking")) | gravity 0 (they do nothing then) | $(fn_sum "$default_lib" "$stacking") | - | - |
 | \`CAROM_ENABLE_STATUS_NAMES\` | the text of \`carom_status_string\` (one generic string left) | always, unless the program prints statuses | - | - | - |
 | \`CAROM_ENABLE_GRID\` | the broadphase grid (every pair of boxes is tested instead) | up to 64 bodies | - | - | - |
-| \`CAROM_ENABLE_GRAVITY\` | with \`CAROM_ENABLE_FORCES\` off too: the quartic time of impact of bodies whose accelerations differ ($(code_list "$quartic")); and the stacking passes | gravity (0, 0) | $(fn_sum "$default_lib" "$quartic") | - | - |
+| \`CAROM_ENABLE_BODY_EDITS\` | removing bodies and the \`carom_body_set_*\` / \`carom_body_apply_*\` calls ($(code_list "$edits"), stubs left) | always, unless the program calls them | $(fn_sum "$default_lib" "$edits") | - | - |
 | \`CAROM_ENABLE_ANGLES\` | the angle helpers ($(code_list "$trig")), and with rotation off carom's sine and cosine (\`cr_rot_from_angle\`) | rotation off and every body at angle 0 | $(fn_sum "$default_lib" "$trig cr_rot_from_angle") | - | - |
 | (circles only) the two-point block solve | \`cr_lcp2\` and its callers' block branches: compiled only when a contact can have two points (polygons) | with \`CAROM_ENABLE_POLYGONS\` | $(fn_sum "$default_lib" "$block") | - | - |
+| (not possible) the quartic time of impact without gravity and forces | $(code_list "$quartic") | never: a solved contact's impulse is spread over its substep as an acceleration (\`cr_solver_set_drifts\`), so bodies touching others accelerate even then | $(fn_sum "$default_lib" "$quartic") | $(fn_sum "$cradle_lib" "$quartic") | $(fn_sum "$gas_lib" "$quartic") |
 | (a fix) polygon-polygon TOI under \`CAROM_ENABLE_POLYGON_POLYGON\` | \`cr_toi_vertices_edges\` | with POLYGON_POLYGON | $(fn_sum "$default_lib" "$toi_pp") | $(fn_sum "$cradle_lib" "$toi_pp") | $(fn_sum "$gas_lib" "$toi_pp") |
 | (a fix) waking under \`CAROM_ENABLE_SLEEP\` | \`cr_island_wake_touched\`, \`cr_island_wake\` | with SLEEP | $(fn_sum "$default_lib" "$wake") | $(fn_sum "$cradle_lib" "$wake") | $(fn_sum "$gas_lib" "$wake") |
 | weights and names only with \`CAROM_ENABLE_PROFILE\` | $(code_list "$profile_api") | always in a lean build | $(fn_sum "$default_lib" "$profile_api") | $(fn_sum "$cradle_lib" "$profile_api") | $(fn_sum "$gas_lib" "$profile_api") |
