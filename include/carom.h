@@ -618,6 +618,9 @@ typedef struct carom_stats {
     long budget_steps;   /**< steps that met more impacts than max_impacts
                               and solved the rest of their contacts
                               together */
+    long bounce_limits;  /**< discrete method: steps whose bounces would
+                              have added kinetic energy to an island, and
+                              were scaled back (docs/physics.md) */
     int max_pairs_used;  /**< most candidate pairs in one step */
     int max_contacts_used; /**< most contacts in one step */
     int max_impacts_used;  /**< most impacts in one step */
