@@ -272,21 +272,28 @@ static void cr_pair_search(carom_world *w, int k, float t0)
          * a contact for the solver */
         float recede, t1;
         approach = cr_approach_speed(&A, &B, t0, slop, &scale, &recede);
-        if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale)))
+        if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale))) {
             p->toi = t0;
-        else if (cr_gt(recede, cr_impact_speed(w, p->a, p->b, scale)) &&
-                 cr_lt(t1 = cr_add(t0, cr_div(cr_mul(2.0f, slop), recede)), dt) &&
-                 (found = cr_time_of_impact(&A, &B, t1, dt, tol, &toi)) != 0 &&
-                 (found == CR_TOI_RESUME ||
-                  cr_gt(cr_approach_speed(&A, &B, toi, slop, &scale, 0),
-                        cr_impact_speed(w, p->a, p->b, scale)))) {
+        } else if (cr_gt(recede, cr_impact_speed(w, p->a, p->b, scale))) {
             /* every touching point leaves fast (a body rebounding off a
-             * corner): where they have left, another part of the pair may
-             * still come down (the far corner of a box landing nearly
-             * flat): that is an impact of its own, at its instant */
-            p->toi = toi;
-            if (found == CR_TOI_RESUME)
-                p->met |= CR_PAIR_RESUME;
+             * corner): the pair is parting, no contact. Where they have
+             * left, another part of it may still come down within the
+             * step (the far corner of a box landing nearly flat): that is
+             * an impact of its own, at its instant (or, arriving slowly,
+             * a contact for the solver) */
+            t1 = cr_add(t0, cr_div(cr_mul(2.0f, slop), recede));
+            if (cr_lt(t1, dt) && (found = cr_time_of_impact(&A, &B, t1, dt, tol, &toi)) != 0) {
+                if (found == CR_TOI_RESUME) {
+                    p->toi = toi;
+                    p->met |= CR_PAIR_RESUME;
+                } else if (cr_gt(cr_approach_speed(&A, &B, toi, slop, &scale, 0),
+                                 cr_impact_speed(w, p->a, p->b, scale))) {
+                    p->toi = toi;
+                } else {
+                    p->met |= CR_PAIR_MET;
+                    slow = 1;
+                }
+            }
         } else {
             p->met |= CR_PAIR_MET;
             slow = 1;
