@@ -40,6 +40,18 @@
                                    "discrete" method */
 #endif
 
+#ifndef CAROM_ENABLE_DISCRETE
+#define CAROM_ENABLE_DISCRETE 1 /**< the "discrete" method (contacts at the
+                                     step's end, one restitution pass);
+                                     off: only the events methods (needs
+                                     CAROM_ENABLE_EVENTS), about 1.5 KB
+                                     less code */
+#endif
+
+#if !CAROM_ENABLE_DISCRETE && !CAROM_ENABLE_EVENTS
+#error "carom: CAROM_ENABLE_DISCRETE and CAROM_ENABLE_EVENTS are both 0: no method is left (turn one on)"
+#endif
+
 #ifndef CAROM_ENABLE_SLEEP
 #define CAROM_ENABLE_SLEEP 1 /**< islands of touching bodies fall asleep when
                                   they stay slow (world def enable_sleep);

@@ -95,10 +95,12 @@ lean-check: $(CLI) $(LIB)
 	    sh tools/embedded/lean.sh --switches include/carom_config.h \
 	        --header $(BUILD)/lean-check/$$n/carom_lean.h || exit 1; \
 	done
-	@# the cradle's build has no angle helpers: it must refuse a scene's angle
+	@# the cradle's build has no angle helpers and no discrete method: it
+	@# must refuse a scene's angle and method=discrete, naming the switch
 	@d=$(BUILD)/lean-check; \
 	printf 'carom-scene 1\nworld gravity=0,0 steps=2\nbody circle radius=0.5 angle=0.5\n' > $$d/angle.scene; \
-	for t in angle:ANGLES; do n=$${t%%:*}; sw=$${t#*:}; \
+	printf 'carom-scene 1\nworld gravity=0,0 steps=2 method=discrete\nbody circle radius=0.5\n' > $$d/discrete.scene; \
+	for t in angle:ANGLES discrete:DISCRETE; do n=$${t%%:*}; sw=$${t#*:}; \
 	    grep -q "^#define CAROM_ENABLE_$$sw 0" $$d/cradle/carom_lean.h || continue; \
 	    if $$d/cradle/carom run $$d/$$n.scene > /dev/null 2> $$d/$$n.err; then \
 	        echo "lean-check: FAIL: the cradle's build (CAROM_ENABLE_$$sw 0) ran $$n.scene" >&2; exit 1; fi; \

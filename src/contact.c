@@ -88,7 +88,7 @@ void cr_contact_from_manifold(const carom_world *w, cr_contact *c,
          * the step's start (Box2D v3), the events methods only count one
          * captured when the point first pushes in a solve (their impacts
          * were taken at their instants already) */
-        p->rel_vn = w->method == CAROM_METHOD_DISCRETE
+        p->rel_vn = CAROM_ENABLE_DISCRETE && w->method == CAROM_METHOD_DISCRETE
                         ? cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
                                           cr_point_velocity(A->v, A->w, p->ra)),
                                   m->n)

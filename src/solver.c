@@ -449,7 +449,7 @@ static float cr_approach_before(const carom_world *w, const cr_contact *c,
     const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
     cr_v2 va, vb;
     float wa, wb;
-    if (w->method != CAROM_METHOD_DISCRETE)
+    if (!CAROM_ENABLE_DISCRETE || w->method != CAROM_METHOD_DISCRETE)
         return cr_point_vn(sa->v0, sa->w0, sb->v0, sb->w0, c, p);
     cr_free_velocity(w, c->a, s->t, &va, &wa);
     cr_free_velocity(w, c->b, s->t, &vb, &wb);
@@ -697,7 +697,12 @@ static int cr_root(int *parent, int i)
 
 static float cr_kinetic(const cr_body_info *in, cr_v2 v, float om)
 {
+#if CAROM_ENABLE_ROTATION
     return cr_mul(0.5f, cr_add(cr_mul(in->m, cr_vdot(v, v)), cr_mul(in->I, cr_mul(om, om))));
+#else
+    (void)om; /* no body turns */
+    return cr_mul(0.5f, cr_mul(in->m, cr_vdot(v, v)));
+#endif
 }
 
 /*
@@ -755,11 +760,14 @@ static int cr_limit_bounce_energy(carom_world *w)
                 parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
                 CR_E_FREE_OF_LIMIT(&w->sbody[ra < rb ? ra : rb]) = f;
             }
-        } else if (A->type == CAROM_BODY_KINEMATIC && cr_body_moves(A)) {
+        }
+#if CAROM_ENABLE_KINEMATIC
+        else if (A->type == CAROM_BODY_KINEMATIC && cr_body_moves(A)) {
             CR_E_FREE_OF_LIMIT(&w->sbody[cr_root(parent, c->b)]) = 1.0f;
         } else if (B->type == CAROM_BODY_KINEMATIC && cr_body_moves(B)) {
             CR_E_FREE_OF_LIMIT(&w->sbody[cr_root(parent, c->a)]) = 1.0f;
         }
+#endif
     }
     for (i = 0; i < w->slot_count; ++i)
         if (parent[i] == i) {
@@ -780,8 +788,12 @@ static int cr_limit_bounce_energy(carom_world *w)
         dw = cr_sub(b->w, sb->wp);
         cr_free_velocity(w, i, w->def.dt, &vf, &wf);
         CR_E_PRE(sr) = cr_add(CR_E_PRE(sr), cr_kinetic(in, sb->vp, sb->wp));
+#if CAROM_ENABLE_ROTATION
         CR_E_LIN(sr) = cr_add(CR_E_LIN(sr), cr_add(cr_mul(in->m, cr_vdot(sb->vp, dv)),
                                                     cr_mul(in->I, cr_mul(sb->wp, dw))));
+#else
+        CR_E_LIN(sr) = cr_add(CR_E_LIN(sr), cr_mul(in->m, cr_vdot(sb->vp, dv)));
+#endif
         CR_E_QUAD(sr) = cr_add(CR_E_QUAD(sr), cr_kinetic(in, dv, dw));
         CR_E_REF(sr) = cr_add(CR_E_REF(sr), cr_kinetic(in, vf, wf));
     }
@@ -819,7 +831,9 @@ static int cr_limit_bounce_energy(carom_world *w)
         f = CR_E_SCALE(&w->sbody[cr_root(parent, i)]);
         if (cr_lt(f, 1.0f)) {
             b->v = cr_vmadd(sb->vp, f, cr_vsub(b->v, sb->vp));
+#if CAROM_ENABLE_ROTATION
             b->w = cr_add(sb->wp, cr_mul(f, cr_sub(b->w, sb->wp)));
+#endif
         }
     }
     /* the bounce impulses recorded: as scaled */
@@ -845,7 +859,7 @@ static int cr_limit_bounce_energy(carom_world *w)
 int cr_solver_restitution(carom_world *w)
 {
     int i, k, it, bounced = 0, bounced_any = 0;
-    const int discrete = w->method == CAROM_METHOD_DISCRETE;
+    const int discrete = CAROM_ENABLE_DISCRETE && w->method == CAROM_METHOD_DISCRETE;
     w->sep_cached = 0;
     /* the bounce impulse of each point, in the position correction's
      * scratch (pp, done by now); it is not kept for the warm start, which

@@ -78,6 +78,10 @@ static carom_status cr_method_available(carom_method m)
     if (m != CAROM_METHOD_DISCRETE)
         return CAROM_ERR_DISABLED;
 #endif
+#if !CAROM_ENABLE_DISCRETE
+    if (m == CAROM_METHOD_DISCRETE)
+        return CAROM_ERR_DISABLED;
+#endif
     return CAROM_OK;
 }
 
@@ -756,7 +760,8 @@ static carom_status cr_step(carom_world *w)
 {
     int n = w->def.substeps, k;
     float dt = w->def.dt, h = cr_div(dt, (float)n);
-    int events = w->method != CAROM_METHOD_DISCRETE && CAROM_ENABLE_EVENTS;
+    int events = CAROM_ENABLE_EVENTS &&
+                 (!CAROM_ENABLE_DISCRETE || w->method != CAROM_METHOD_DISCRETE);
     carom_status st;
     cr_substep sub;
 

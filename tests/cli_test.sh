@@ -771,7 +771,7 @@ expect_rc 0 "lean of two frictionless balls"
 cp "$tmp/out" "$tmp/twoballs.h"
 check "lean: nothing on stderr" test ! -s "$tmp/err"
 for sw in POLYGONS DYNAMIC_POLYGONS POLYGON_POLYGON ROTATION FRICTION FORCES SLEEP KINEMATIC \
-    ANGLES BODY_EDITS; do
+    ANGLES BODY_EDITS DISCRETE; do
     check "lean two balls: CAROM_ENABLE_$sw 0" header_has "$tmp/twoballs.h" "CAROM_ENABLE_$sw" 0
 done
 # an angle without rotation keeps the angle helpers (the scene's angle= needs them)
@@ -807,6 +807,8 @@ check "lean --margin=100 --slack=1: CAROM_LEAN_MAX_PAIRS 3" \
 run lean "$tmp/twoballs.scene" --method discrete
 check "lean --method discrete: CAROM_ENABLE_EVENTS 0" \
     header_has "$tmp/out" CAROM_ENABLE_EVENTS 0
+check "lean --method discrete: CAROM_ENABLE_DISCRETE 1" \
+    header_has "$tmp/out" CAROM_ENABLE_DISCRETE 1
 # the header compiles, and a world sized by it can be made
 if command -v cc > /dev/null 2>&1; then
     cat > "$tmp/lean_prog.c" <<'EOS'

@@ -1829,6 +1829,13 @@ static int cmd_lean(int argc, char **argv)
         lean_switch("FORCES", 0, "no body has a force or torque: gravity only");
     }
     lean_switch("EVENTS", events_on, "the method is %s", carom_method_name(s.world.method));
+#ifdef CAROM_ENABLE_DISCRETE
+    if (events_on)
+        lean_switch("DISCRETE", 0, "the method is %s; turn on if the program switches to the "
+                                   "discrete method", carom_method_name(s.world.method));
+    else
+        lean_switch("DISCRETE", 1, "the method is discrete");
+#endif
     if (sleep_on) {
         lean_body_ref(a, sizeof a, &s, n.sleep_body);
         lean_switch("SLEEP", 1, "%s fell asleep in step %ld", a, n.sleep_step);

@@ -23,7 +23,7 @@ printf '%8s  %s\n' "$base" "defaults"
 fail=0
 for sw in POLYGONS ROTATION FRICTION FORCES EVENTS SLEEP KINEMATIC POLYGON_POLYGON GRID \
     DYNAMIC_POLYGONS FILTERING SENSORS QUERIES TOUCH_EVENTS STACKING STATUS_NAMES GROW ANGLES \
-    BODY_EDITS; do
+    BODY_EDITS DISCRETE; do
     n=$(size_of "-DCAROM_ENABLE_$sw=0")
     printf '%8s  CAROM_ENABLE_%s=0\n' "$n" "$sw"
     if [ "$n" -ge "$base" ]; then

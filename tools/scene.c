@@ -696,6 +696,19 @@ int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
     }
 #endif
     st = carom_world_def_validate(&wd);
+    if (st == CAROM_ERR_DISABLED) {
+        /* name the switch: the status name may be compiled out */
+        const char *sw = !CAROM_ENABLE_DISCRETE && wd.method == CAROM_METHOD_DISCRETE
+                             ? "CAROM_ENABLE_DISCRETE"
+                             : !CAROM_ENABLE_EVENTS && wd.method != CAROM_METHOD_DISCRETE
+                                   ? "CAROM_ENABLE_EVENTS"
+                                   : NULL;
+        if (sw) {
+            snprintf(err, errlen, "world: method=%s: this carom was built without %s",
+                     carom_method_name(wd.method), sw);
+            return -1;
+        }
+    }
     if (st != CAROM_OK) {
         snprintf(err, errlen, "world: %s", carom_status_string(st));
         return -1;

@@ -58,8 +58,11 @@ timeout 30 "$qemu" -machine microbit -nographic -monitor none \
 # switches of include/carom_config.h (CAROM_ENABLE_PROFILE aside)
 sed -n 's/^#ifndef CAROM_ENABLE_\([A-Z0-9_]*\).*/\1/p' include/carom_config.h |
     grep -v '^PROFILE$' > "$work/switches"
+# (all off keeps one method: the discrete one)
 all_off=""
-while read -r sw; do all_off="$all_off -DCAROM_ENABLE_$sw=0"; done < "$work/switches"
+while read -r sw; do
+    [ "$sw" = DISCRETE ] || all_off="$all_off -DCAROM_ENABLE_$sw=0"
+done < "$work/switches"
 
 # build_cfg NAME FLAGS: libcarom.a for the M4F and for x86-64, then
 # "NAME m4f-text data bss x86-text" into $work/NAME.size
@@ -269,7 +272,7 @@ are all the assumptions.
 
 \`size -t\` of libcarom.a (text includes read-only data), built with the
 project's flags (\`-O2\`; Cortex-M4F: \`$M4F_FLAGS\`). "all off" turns
-every capability switch of include/carom_config.h off ($(paste -s -d ' ' "$work/switches")); "no X"
+every capability switch of include/carom_config.h off ($(grep -v '^DISCRETE$' "$work/switches" | paste -s -d ' '); DISCRETE stays on, one method must be left); "no X"
 turns X alone off; "lean NAME" uses the header \`carom lean
 tools/scenes/NAME.scene\` prints (its scene's switches; see \`make lean\`).
 
