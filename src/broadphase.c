@@ -34,12 +34,6 @@
 #define CR_BIG_FACTOR 4.0f
 #endif
 
-int cr_boxes_overlap(const cr_box *p, const cr_box *q)
-{
-    return !(cr_lt(q->hi_x, p->lo_x) || cr_lt(p->hi_x, q->lo_x) ||
-             cr_lt(q->hi_y, p->lo_y) || cr_lt(p->hi_y, q->lo_y));
-}
-
 typedef struct cr_pair_out {
     cr_pair *out;
     int cap;
