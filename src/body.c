@@ -26,11 +26,6 @@ int cr_body_moves(const cr_body *b)
 #endif
 }
 
-int cr_v2_within(cr_v2 x, float limit)
-{
-    return cr_le(cr_abs(x.x), limit) && cr_le(cr_abs(x.y), limit);
-}
-
 /* ---- polygon checks -------------------------------------------------------- */
 
 #if CAROM_ENABLE_POLYGONS

@@ -118,7 +118,10 @@ int cr_accel_in_range(const cr_body_info *info, cr_v2 force, float torque);
 #define CR_ROT_MIN_LEN2 1.17549435e-38f
 
 /* |x| <= limit for both components, x finite. */
-int cr_v2_within(cr_v2 x, float limit);
+CR_INLINE int cr_v2_within(cr_v2 x, float limit)
+{
+    return cr_le(cr_abs(x.x), limit) && cr_le(cr_abs(x.y), limit);
+}
 
 /* Can the body move this step: an awake dynamic body, or a kinematic body
  * given a velocity? Static bodies, sleeping bodies and kinematic bodies at

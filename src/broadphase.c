@@ -34,12 +34,6 @@
 #define CR_BIG_FACTOR 4.0f
 #endif
 
-int cr_boxes_overlap(const cr_box *p, const cr_box *q)
-{
-    return !(cr_lt(q->hi_x, p->lo_x) || cr_lt(p->hi_x, q->lo_x) ||
-             cr_lt(q->hi_y, p->lo_y) || cr_lt(p->hi_y, q->lo_y));
-}
-
 typedef struct cr_pair_out {
     cr_pair *out;
     int cap;
@@ -214,17 +208,47 @@ long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
     o.ctx = ctx;
     for (i = 0; i < bp->grid_count; ++i) {
         const cr_proxy *p = &bp->proxies[i];
-        int k = cr_bucket(bp, p->cx, p->cy);
-        /* the same cell: later items of the bucket only */
-        for (j = i + 1; j < bp->start[k + 1]; ++j) {
-            const cr_proxy *q = &bp->proxies[j];
-            if (q->cx == p->cx && q->cy == p->cy && cr_boxes_overlap(&p->box, &q->box))
-                cr_emit(&o, p->body, q->body);
+        int cx = p->cx, cy = p->cy, end;
+        unsigned col = (unsigned)cx & bp->xmask;
+        int k = (int)(col | (((unsigned)cy & bp->ymask) << bp->xbits));
+        int k1 = (int)(col | ((((unsigned)cy + 1u) & bp->ymask) << bp->xbits));
+        /* Neighbouring cells of a row are neighbouring buckets, so their
+         * items are one run of proxies (unless the table wraps there):
+         * each run is read once, its items told apart by their cells.
+         * The table is at least 4 buckets wide and high (16 buckets or
+         * more), so the cells of a run never share a bucket. */
+        if (col < bp->xmask) {
+            /* the same cell (later items of the bucket only) and the
+             * cell to the right: the rest of bucket k and bucket k + 1 */
+            end = bp->start[k + 2];
+            for (j = i + 1; j < end; ++j) {
+                const cr_proxy *q = &bp->proxies[j];
+                if (q->cy == cy && (q->cx == cx || q->cx == cx + 1) &&
+                    cr_boxes_overlap(&p->box, &q->box))
+                    cr_emit(&o, p->body, q->body);
+            }
+        } else {
+            for (j = i + 1; j < bp->start[k + 1]; ++j) {
+                const cr_proxy *q = &bp->proxies[j];
+                if (q->cx == cx && q->cy == cy && cr_boxes_overlap(&p->box, &q->box))
+                    cr_emit(&o, p->body, q->body);
+            }
+            cr_cell_pairs(bp, i, cx + 1, cy, &o);
         }
-        cr_cell_pairs(bp, i, p->cx + 1, p->cy, &o);
-        cr_cell_pairs(bp, i, p->cx - 1, p->cy + 1, &o);
-        cr_cell_pairs(bp, i, p->cx, p->cy + 1, &o);
-        cr_cell_pairs(bp, i, p->cx + 1, p->cy + 1, &o);
+        if (col > 0u && col < bp->xmask) {
+            /* the three cells above: buckets k1 - 1 .. k1 + 1 */
+            end = bp->start[k1 + 2];
+            for (j = bp->start[k1 - 1]; j < end; ++j) {
+                const cr_proxy *q = &bp->proxies[j];
+                if (q->cy == cy + 1 && q->cx >= cx - 1 && q->cx <= cx + 1 &&
+                    cr_boxes_overlap(&p->box, &q->box))
+                    cr_emit(&o, p->body, q->body);
+            }
+        } else {
+            cr_cell_pairs(bp, i, cx - 1, cy + 1, &o);
+            cr_cell_pairs(bp, i, cx, cy + 1, &o);
+            cr_cell_pairs(bp, i, cx + 1, cy + 1, &o);
+        }
     }
     /* big boxes: against each other, then against the grid */
     for (i = bp->grid_count; i < n; ++i) {

@@ -78,6 +78,10 @@ int cr_broadphase_query(const cr_broadphase *bp, const cr_box *boxes,
  * slots); tmp and count as in cr_broadphase. */
 void cr_pairs_sort(cr_pair *pairs, cr_pair *tmp, int n, int *count, int slots);
 
-int cr_boxes_overlap(const cr_box *p, const cr_box *q);
+CR_INLINE int cr_boxes_overlap(const cr_box *p, const cr_box *q)
+{
+    return !(cr_lt(q->hi_x, p->lo_x) || cr_lt(p->hi_x, q->lo_x) ||
+             cr_lt(q->hi_y, p->lo_y) || cr_lt(p->hi_y, q->lo_y));
+}
 
 #endif /* CAROM_BROADPHASE_H */

@@ -472,12 +472,11 @@ static float cr_lever_n(const carom_world *w, int body, cr_v2 r, cr_v2 n)
     return CR_BODY_IS_CIRCLE(&w->bodies[body]) ? 0.0f : cr_vcross(r, n);
 }
 
-static void cr_row_apply(carom_world *w, const cr_impact_row *r, int k,
-                         cr_v2 dir, float la, float lb, float P)
+/* Impulse P along dir at lever arms la, lb: -P on A, +P on B. */
+CR_INLINE void cr_bodies_apply(cr_body *A, cr_body *B, cr_v2 dir, float la, float lb,
+                               float P)
 {
-    cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
     cr_v2 I = cr_vscale(P, dir);
-    (void)k;
     A->v = cr_vmadd(A->v, cr_neg(A->inv_m), I);
     B->v = cr_vmadd(B->v, B->inv_m, I);
 #if CAROM_ENABLE_ROTATION
@@ -489,13 +488,19 @@ static void cr_row_apply(carom_world *w, const cr_impact_row *r, int k,
 #endif
 }
 
-static float cr_row_vn(const carom_world *w, const cr_impact_row *r, int k,
-                       cr_v2 dir)
+/* Relative velocity along dir of the points at ra (on A) and rb (on B). */
+CR_INLINE float cr_bodies_vn(const cr_body *A, const cr_body *B, cr_v2 ra, cr_v2 rb,
+                             cr_v2 dir)
 {
-    const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
-    return cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, r->rb[k]),
-                           cr_point_velocity(A->v, A->w, r->ra[k])),
+    return cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, rb),
+                           cr_point_velocity(A->v, A->w, ra)),
                    dir);
+}
+
+static void cr_row_apply(carom_world *w, const cr_impact_row *r, cr_v2 dir, float la,
+                         float lb, float P)
+{
+    cr_bodies_apply(&w->bodies[r->a], &w->bodies[r->b], dir, la, lb, P);
 }
 
 /* One sweep over a row: friction, then the normal impulses (a 2-point row
@@ -503,10 +508,10 @@ static float cr_row_vn(const carom_world *w, const cr_impact_row *r, int k,
  * it made at one of its points (impulse change over effective mass). */
 static float cr_row_sweep(carom_world *w, cr_impact_row *r)
 {
+    cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
     float change = 0.0f;
     int k;
 #if CAROM_ENABLE_FRICTION
-    const cr_body *A = &w->bodies[r->a], *B = &w->bodies[r->b];
     cr_v2 t = cr_vright(r->n);
     if (CR_TWO_POINTS && cr_gt(r->friction, 0.0f) && r->count == 2) {
         /* one row for both points (same line of action), as the contact
@@ -522,47 +527,47 @@ static float cr_row_sweep(carom_world *w, cr_impact_row *r)
         float mass_t = cr_mul(0.5f, cr_add(r->mass_t[0], r->mass_t[1]));
         float pt = cr_clamp(cr_sub(old, cr_mul(mass_t, vt)), cr_neg(limit), limit);
         float d = cr_sub(pt, old);
-        cr_row_apply(w, r, 0, t, cr_vcross(ra, t), cr_vcross(rb, t), d);
+        cr_bodies_apply(A, B, t, cr_vcross(ra, t), cr_vcross(rb, t), d);
         r->pt[0] = cr_mul(cr_gt(pn, 0.0f) ? cr_div(r->pn[0], pn) : 0.5f, pt);
         r->pt[1] = cr_sub(pt, r->pt[0]);
         change = cr_max(change, cr_div(cr_abs(d), mass_t));
     } else if (cr_gt(r->friction, 0.0f))
         for (k = 0; k < r->count; ++k) {
-            float vt = cr_row_vn(w, r, k, t);
+            float vt = cr_bodies_vn(A, B, r->ra[k], r->rb[k], t);
             float limit = cr_mul(r->friction, r->pn[k]);
             float pt = cr_clamp(cr_sub(r->pt[k], cr_mul(r->mass_t[k], vt)),
                                 cr_neg(limit), limit);
             float d = cr_sub(pt, r->pt[k]);
             r->pt[k] = pt;
-            cr_row_apply(w, r, k, t, cr_vcross(r->ra[k], t), cr_vcross(r->rb[k], t), d);
+            cr_bodies_apply(A, B, t, cr_vcross(r->ra[k], t), cr_vcross(r->rb[k], t), d);
             change = cr_max(change, cr_div(cr_abs(d), r->mass_t[k]));
         }
 #endif
 #if CR_TWO_POINTS
     if (CR_TWO_POINTS && r->block) {
         float a1 = r->pn[0], a2 = r->pn[1], x1, x2;
-        float b1 = cr_sub(cr_sub(cr_row_vn(w, r, 0, r->n), r->target[0]),
+        float b1 = cr_sub(cr_sub(cr_bodies_vn(A, B, r->ra[0], r->rb[0], r->n), r->target[0]),
                           cr_add(cr_mul(r->k11, a1), cr_mul(r->k12, a2)));
-        float b2 = cr_sub(cr_sub(cr_row_vn(w, r, 1, r->n), r->target[1]),
+        float b2 = cr_sub(cr_sub(cr_bodies_vn(A, B, r->ra[1], r->rb[1], r->n), r->target[1]),
                           cr_add(cr_mul(r->k12, a1), cr_mul(r->k22, a2)));
         if (cr_lcp2(r->k11, r->k12, r->k22, b1, b2, &x1, &x2)) {
             float d1 = cr_sub(x1, a1), d2 = cr_sub(x2, a2);
             r->pn[0] = x1;
             r->pn[1] = x2;
-            cr_row_apply(w, r, 0, r->n, r->la[0], r->lb[0], d1);
-            cr_row_apply(w, r, 1, r->n, r->la[1], r->lb[1], d2);
+            cr_bodies_apply(A, B, r->n, r->la[0], r->lb[0], d1);
+            cr_bodies_apply(A, B, r->n, r->la[1], r->lb[1], d2);
             return cr_max(change, cr_max(cr_mul(cr_abs(d1), r->k11),
                                          cr_mul(cr_abs(d2), r->k22)));
         }
     }
 #endif
     for (k = 0; k < r->count; ++k) {
-        float vn = cr_row_vn(w, r, k, r->n);
+        float vn = cr_bodies_vn(A, B, r->ra[k], r->rb[k], r->n);
         float pn = cr_max(cr_sub(r->pn[k], cr_mul(r->mass_n[k], cr_sub(vn, r->target[k]))),
                           0.0f);
         float d = cr_sub(pn, r->pn[k]);
         r->pn[k] = pn;
-        cr_row_apply(w, r, k, r->n, r->la[k], r->lb[k], d);
+        cr_bodies_apply(A, B, r->n, r->la[k], r->lb[k], d);
         change = cr_max(change, cr_div(cr_abs(d), r->mass_n[k]));
     }
     return change;
@@ -786,7 +791,7 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
         cr_v2 d;
         float la, lb;
         cr_unknown_dir(r, U_KIND(i), &d, &la, &lb);
-        cr_row_apply(w, r, 0, d, la, lb, x[i]);
+        cr_row_apply(w, r, d, la, lb, x[i]);
         if (U_KIND(i) < 2)
             r->pn[U_KIND(i)] = cr_add(r->pn[U_KIND(i)], x[i]);
 #if CAROM_ENABLE_FRICTION

@@ -35,48 +35,6 @@ cr_rot cr_rot_advance(cr_rot q, float angle)
 #endif
 }
 
-void cr_add_position(cr_body *b, cr_v2 dx)
-{
-#if CAROM_ENABLE_COMPENSATED
-    cr_kadd(&b->x.x, &b->xc.x, dx.x);
-    cr_kadd(&b->x.y, &b->xc.y, dx.y);
-#else
-    b->x = cr_vadd(b->x, dx);
-#endif
-}
-
-void cr_add_velocity(cr_body *b, cr_v2 dv)
-{
-#if CAROM_ENABLE_COMPENSATED
-    cr_kadd(&b->v.x, &b->vc.x, dv.x);
-    cr_kadd(&b->v.y, &b->vc.y, dv.y);
-#else
-    b->v = cr_vadd(b->v, dv);
-#endif
-}
-
-void cr_add_angular(cr_body *b, float dw)
-{
-#if CAROM_ENABLE_COMPENSATED
-    cr_kadd(&b->w, &b->wc, dw);
-#else
-    b->w = cr_add(b->w, dw);
-#endif
-}
-
-/* Displacement v h + a h^2 / 2 of a drift over h. */
-static cr_v2 cr_drift_offset(cr_v2 v, cr_v2 a, float h)
-{
-    return cr_vadd(cr_vscale(h, v), cr_vscale(cr_mul(0.5f, cr_mul(h, h)), a));
-}
-
-#if CAROM_ENABLE_ROTATION
-static float cr_drift_angle(float w, float alpha, float h)
-{
-    return cr_add(cr_mul(w, h), cr_mul(cr_mul(0.5f, cr_mul(h, h)), alpha));
-}
-#endif
-
 void cr_pose_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *x,
                 cr_rot *q)
 {
@@ -95,20 +53,6 @@ void cr_velocity_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *v,
     float h = cr_sub(s, d->t);
     *v = cr_vmadd(b->v, h, d->a);
     *w = cr_add(b->w, cr_mul(h, d->alpha));
-}
-
-void cr_sync(cr_body *b, cr_drift *d, float s)
-{
-    float h = cr_sub(s, d->t);
-    d->t = s;
-    if (b->type == CAROM_BODY_STATIC || cr_eq(h, 0.0f))
-        return;
-    cr_add_position(b, cr_drift_offset(b->v, d->a, h));
-    cr_add_velocity(b, cr_vscale(h, d->a));
-#if CAROM_ENABLE_ROTATION
-    b->q = cr_rot_advance(b->q, cr_drift_angle(b->w, d->alpha, h));
-    cr_add_angular(b, cr_mul(h, d->alpha));
-#endif
 }
 
 carom_status cr_body_accel(const carom_world_def *def, int id,

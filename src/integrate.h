@@ -33,20 +33,71 @@ void cr_pose_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *x,
 void cr_velocity_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *v,
                     float *w);
 
-/* Move the body's state along its drift to local time s (compensated). */
-void cr_sync(cr_body *b, cr_drift *d, float s);
-
 /* q turned by `angle` (the library's own trigonometry, renormalised). */
 cr_rot cr_rot_advance(cr_rot q, float angle);
 
-/* Add dv to the velocity (compensated sum when enabled). */
-void cr_add_velocity(cr_body *b, cr_v2 dv);
-
-/* w += dw, compensated like the velocity. */
-void cr_add_angular(cr_body *b, float dw);
+/* Inline below: called per body in the step's loops. */
 
 /* Add dx to the position (compensated sum when enabled). */
-void cr_add_position(cr_body *b, cr_v2 dx);
+CR_INLINE void cr_add_position(cr_body *b, cr_v2 dx)
+{
+#if CAROM_ENABLE_COMPENSATED
+    cr_kadd(&b->x.x, &b->xc.x, dx.x);
+    cr_kadd(&b->x.y, &b->xc.y, dx.y);
+#else
+    b->x = cr_vadd(b->x, dx);
+#endif
+}
+
+/* Add dv to the velocity (compensated sum when enabled). */
+CR_INLINE void cr_add_velocity(cr_body *b, cr_v2 dv)
+{
+#if CAROM_ENABLE_COMPENSATED
+    cr_kadd(&b->v.x, &b->vc.x, dv.x);
+    cr_kadd(&b->v.y, &b->vc.y, dv.y);
+#else
+    b->v = cr_vadd(b->v, dv);
+#endif
+}
+
+/* w += dw, compensated like the velocity. */
+CR_INLINE void cr_add_angular(cr_body *b, float dw)
+{
+#if CAROM_ENABLE_COMPENSATED
+    cr_kadd(&b->w, &b->wc, dw);
+#else
+    b->w = cr_add(b->w, dw);
+#endif
+}
+
+/* Displacement v h + a h^2 / 2 of a drift over h. */
+CR_INLINE cr_v2 cr_drift_offset(cr_v2 v, cr_v2 a, float h)
+{
+    return cr_vadd(cr_vscale(h, v), cr_vscale(cr_mul(0.5f, cr_mul(h, h)), a));
+}
+
+#if CAROM_ENABLE_ROTATION
+/* Turn w h + alpha h^2 / 2 of a drift over h. */
+CR_INLINE float cr_drift_angle(float w, float alpha, float h)
+{
+    return cr_add(cr_mul(w, h), cr_mul(cr_mul(0.5f, cr_mul(h, h)), alpha));
+}
+#endif
+
+/* Move the body's state along its drift to local time s (compensated). */
+CR_INLINE void cr_sync(cr_body *b, cr_drift *d, float s)
+{
+    float h = cr_sub(s, d->t);
+    d->t = s;
+    if (b->type == CAROM_BODY_STATIC || cr_eq(h, 0.0f))
+        return;
+    cr_add_position(b, cr_drift_offset(b->v, d->a, h));
+    cr_add_velocity(b, cr_vscale(h, d->a));
+#if CAROM_ENABLE_ROTATION
+    b->q = cr_rot_advance(b->q, cr_drift_angle(b->w, d->alpha, h));
+    cr_add_angular(b, cr_mul(h, d->alpha));
+#endif
+}
 
 /*
  * Acceleration of the forces on a body at its current state: gravity plus

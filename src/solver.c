@@ -124,17 +124,19 @@ float cr_contact_approach(const carom_world *w, const cr_contact *c)
 {
     const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
     const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
-    float fastest = 0.0f;
+    float fastest = 0.0f, sep[CR_MANIFOLD_POINTS];
     int k, touching = 0;
     /* if some point touches, only the touching points count: the far end
      * of a rod toppling about its other end is a speculative point, which
      * the solver stops where it meets, not an impact of the pair */
-    for (k = 0; k < c->count; ++k)
-        touching |= cr_le(cr_current_sep(c, &c->pts[k], sa, sb), w->scale.spec);
+    for (k = 0; k < c->count; ++k) {
+        sep[k] = cr_current_sep(c, &c->pts[k], sa, sb);
+        touching |= cr_le(sep[k], w->scale.spec);
+    }
     for (k = 0; k < c->count; ++k) {
         const cr_contact_point *p = &c->pts[k];
         cr_v2 dv;
-        if (touching && cr_gt(cr_current_sep(c, p, sa, sb), w->scale.spec))
+        if (touching && cr_gt(sep[k], w->scale.spec))
             continue;
         dv = cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
                      cr_point_velocity(A->v, A->w, p->ra));

@@ -730,6 +730,16 @@ static carom_status cr_check_state(carom_world *w)
     for (i = 0; i < w->awake_count; ++i) {
         int id = w->awake[i];
         const cr_body *b = &w->bodies[id];
+        /* the usual case first: within range implies finite for x and v,
+         * and these are the operations the checks below make when all
+         * pass; a body that fails any is checked again in full, so the
+         * error reported is the same */
+        if (cr_v2_within(b->x, CAROM_LIMIT_MAX_LENGTH) &&
+            cr_v2_within(b->v, CAROM_LIMIT_MAX_SPEED) && cr_finite(b->w) &&
+            cr_finite(b->q.c) && cr_finite(b->q.s) &&
+            (cr_eq(b->w, 0.0f) ||
+             !cr_gt(cr_mul(cr_abs(b->w), w->info[id].shape.extent), CAROM_LIMIT_MAX_SPEED)))
+            continue;
         if (!cr_finite(b->x.x) || !cr_finite(b->x.y) || !cr_finite(b->v.x) ||
             !cr_finite(b->v.y) || !cr_finite(b->w) || !cr_finite(b->q.c) ||
             !cr_finite(b->q.s)) {
