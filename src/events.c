@@ -497,11 +497,13 @@ CR_INLINE float cr_bodies_vn(const cr_body *A, const cr_body *B, cr_v2 ra, cr_v2
                    dir);
 }
 
+#if CAROM_IMPACT_DIRECT_MAX > 0 /* (the exact island solve's) */
 static void cr_row_apply(carom_world *w, const cr_impact_row *r, cr_v2 dir, float la,
                          float lb, float P)
 {
     cr_bodies_apply(&w->bodies[r->a], &w->bodies[r->b], dir, la, lb, P);
 }
+#endif
 
 /* One sweep over a row: friction, then the normal impulses (a 2-point row
  * as a block when well conditioned). Returns the largest velocity change
