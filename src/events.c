@@ -430,14 +430,17 @@ static int cr_regrow_visit(void *ctx, int other)
 
 /* An impulse can send a body out of the box it was expected to sweep (a
  * light ball struck by a heavy one): grow the box, and add the pairs the
- * larger box makes, so no impact is missed for want of a candidate pair. */
-static carom_status cr_regrow(carom_world *w, int i, float t)
+ * larger box makes, so no impact is missed for want of a candidate pair.
+ * The body's drift after the impact holds until t_end, the substep's end
+ * (cr_release_active puts every body of an impact island, all of them
+ * active, back on its free motion there). */
+static carom_status cr_regrow(carom_world *w, int i, float t, float t_end)
 {
     cr_mover m = cr_mover_of(w, i);
     cr_box now, *box = &w->boxes[i];
     cr_regrow_ctx ctx;
     int j;
-    cr_swept_box(&m, t, w->def.dt, w->scale.spec, &now);
+    cr_swept_box_until(&m, t, t_end, w->def.dt, w->scale.spec, &now);
     if (cr_le(box->lo_x, now.lo_x) && cr_ge(box->hi_x, now.hi_x) &&
         cr_le(box->lo_y, now.lo_y) && cr_ge(box->hi_y, now.hi_y))
         return CAROM_OK;
@@ -1211,7 +1214,7 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         ++w->drift[w->island[i]].version;
     for (i = 0; i < nb && st == CAROM_OK; ++i) {
         CR_PHASE(w, CAROM_PHASE_BROADPHASE);
-        st = cr_regrow(w, w->island[i], t);
+        st = cr_regrow(w, w->island[i], t, t_end);
         CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
     }
     for (i = 0; i < nb; ++i) {

@@ -128,6 +128,40 @@ void cr_swept_box(const cr_mover *m, float t0, float t1, float margin,
     }
 }
 
+void cr_swept_box_until(const cr_mover *m, float t0, float t_mid, float t1,
+                        float margin, cr_box *out)
+{
+    cr_body b;
+    cr_drift d;
+    cr_mover rest;
+    cr_box later;
+    if (m->b->type == CAROM_BODY_STATIC || !cr_lt(t_mid, t1)) {
+        cr_swept_box(m, t0, t1, margin, out);
+        return;
+    }
+    cr_swept_box(m, t0, t_mid, margin, out);
+    b = *m->b;
+    d = *m->d;
+    cr_pose_at(m->b, m->d, t_mid, &b.x, &b.q);
+    cr_velocity_at(m->b, m->d, t_mid, &b.v, &b.w);
+    d.t = t_mid;
+    if (b.type == CAROM_BODY_DYNAMIC) {
+        d.a = b.a;
+        d.alpha = b.alpha;
+    } else {
+        d.a = cr_v(0.0f, 0.0f);
+        d.alpha = 0.0f;
+    }
+    rest.s = m->s;
+    rest.b = &b;
+    rest.d = &d;
+    cr_swept_box(&rest, t_mid, t1, margin, &later);
+    out->lo_x = cr_min(out->lo_x, later.lo_x);
+    out->lo_y = cr_min(out->lo_y, later.lo_y);
+    out->hi_x = cr_max(out->hi_x, later.hi_x);
+    out->hi_y = cr_max(out->hi_y, later.hi_y);
+}
+
 /* The swept boxes above serve every method (the broadphase); what follows
  * times impacts, for the events methods only. */
 #if CAROM_ENABLE_EVENTS

@@ -28,6 +28,16 @@ int cr_first_root4(const float c[5], float hi, float *out);
 void cr_swept_box(const cr_mover *m, float t0, float t1, float margin,
                   cr_box *out);
 
+/* The same when the drift holds only until t_mid (an impact's hold, or
+ * the solver's, lasts to the substep's end, where the step puts the body
+ * back on the free motion of its forces): the drift's box over
+ * [t0, t_mid] joined to the free motion's from the drift's state at t_mid
+ * to t1. Swept whole, the hold's acceleration (a velocity change over
+ * what is left of a substep, 10^6 m/s^2 when an impact falls a
+ * microsecond before its end) made boxes across a whole pile. */
+void cr_swept_box_until(const cr_mover *m, float t0, float t_mid, float t1,
+                        float margin, cr_box *out);
+
 /* The note's early-out: 1 if the bodies' bounding circles cannot meet over
  * [t0, t1] (their centres' distance at the time of closest approach,
  * minus what acceleration can bend, exceeds their extents plus margin). */
