@@ -66,6 +66,18 @@
  * redundant rows, left to the sweeps. */
 #define CR_DIRECT_AFTER 8
 #define CR_DIRECT_MIN_PIVOT 1.0e-3f
+/* A solve that has stalled stops: after at least CR_STALL_MIN sweeps and
+ * twice as many sweeps as it has rows (an impulse crosses a chain of rows,
+ * a Newton's cradle, one row per sweep, and the change stays level while
+ * it does), a change that has not halved over the last CR_STALL_SPAN
+ * sweeps is a slowly converging frictional island in a pile (its change
+ * falls about 0.6x per doubling of the sweeps), and what is left of it is
+ * the contact solver's, as it is for every contact in the discrete
+ * method. Measured on a falling pile of 10^4 bodies, a quarter of the
+ * converged solves ran into the CAROM_IMPACT_ISLAND_ITERATIONS cap and
+ * took more than half of all the sweeps of the events method. */
+#define CR_STALL_MIN 32
+#define CR_STALL_SPAN 16
 
 /* Approach below this fraction of the bodies' speeds is rounding. */
 #define CR_APPROACH_REL_TOL 1.0e-4f
@@ -825,7 +837,7 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
 static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n, int max_sweeps)
 {
     int it, i, k;
-    float tol = 0.0f;
+    float tol = 0.0f, last = 0.0f;
     for (i = 0; i < n; ++i) {
         const cr_impact_row *r = &rows[i];
         tol = cr_max(tol, cr_max(cr_mul(CR_ISLAND_TOL, r->approach),
@@ -839,6 +851,12 @@ static void cr_rows_solve(carom_world *w, cr_impact_row *rows, int n, int max_sw
             change = cr_max(change, cr_row_sweep(w, &rows[i]));
         if (!cr_gt(change, tol))
             break;
+        if ((it + 1) % CR_STALL_SPAN == 0) {
+            if (it + 1 >= CR_STALL_MIN && it + 1 >= 2 * n &&
+                cr_gt(change, cr_mul(0.5f, last)))
+                break;
+            last = change;
+        }
         /* a single frictionless point is exact after one sweep */
         if (n == 1 && rows[0].count == 1 && !cr_gt(rows[0].friction, 0.0f))
             break;
