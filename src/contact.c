@@ -68,7 +68,11 @@ void cr_contact_from_manifold(const carom_world *w, cr_contact *c,
 #else
     c->friction = 0.0f;
 #endif
-    c->flags &= ~CR_CONTACT_TOUCHING;
+    c->flags &= ~(CR_CONTACT_TOUCHING | CR_CONTACT_ROUND_A | CR_CONTACT_ROUND_B);
+    if (CR_KIND_CIRCLE(ia->shape.kind))
+        c->flags |= CR_CONTACT_ROUND_A;
+    if (CR_KIND_CIRCLE(ib->shape.kind))
+        c->flags |= CR_CONTACT_ROUND_B;
     for (k = 0; k < m->count; ++k) {
         cr_contact_point *p = &c->pts[k];
         const cr_manifold_point *mp = &m->pts[k];

@@ -63,6 +63,9 @@ typedef struct cr_contact_point {
                                   its approach (no micro-collisions) */
 #define CR_CONTACT_SHOCK_A 16u /* shock propagation: a support of body a */
 #define CR_CONTACT_SHOCK_B 32u /* ... of body b (cr_solver_mark_shocks) */
+#define CR_CONTACT_ROUND_A 64u  /* body a is a circle: its normal lever arm is
+                                   0 (cr_contact_lever_a) */
+#define CR_CONTACT_ROUND_B 128u /* ... body b */
 
 typedef struct cr_contact {
     int a, b;          /* body slots, a < b */
@@ -77,6 +80,18 @@ typedef struct cr_contact {
     float k11, k12, k22; /* 2 points: the normal effective-mass matrix K */
     cr_contact_point pts[CR_MANIFOLD_POINTS];
 } cr_contact;
+
+/* The normal lever arms r x n of contact c's bodies at arm r, 0 for a
+ * circle (cr_lever in contact.c), from the contact's flags: the solver's
+ * sweeps need not read the bodies' shapes. */
+CR_INLINE float cr_contact_lever_a(const cr_contact *c, cr_v2 r)
+{
+    return (c->flags & CR_CONTACT_ROUND_A) ? 0.0f : cr_vcross(r, c->n);
+}
+CR_INLINE float cr_contact_lever_b(const cr_contact *c, cr_v2 r)
+{
+    return (c->flags & CR_CONTACT_ROUND_B) ? 0.0f : cr_vcross(r, c->n);
+}
 
 /* Impulses kept from one step to warm-start the next, sorted by (a, b). */
 typedef struct cr_warm {

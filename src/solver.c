@@ -268,8 +268,8 @@ void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s)
         for (k = 0; k < c->count; ++k) {
             const cr_contact_point *p = &c->pts[k];
             if (!cr_eq(p->pn, 0.0f))
-                cr_apply(A, B, cr_normal_lever(w, c->a, p->ra, c->n),
-                         cr_normal_lever(w, c->b, p->rb, c->n), c->n, p->pn);
+                cr_apply(A, B, cr_contact_lever_a(c, p->ra), cr_contact_lever_b(c, p->rb),
+                         c->n, p->pn);
 #if CAROM_ENABLE_FRICTION /* (without it every tangent impulse is 0) */
             if (!cr_eq(p->pt, 0.0f))
                 cr_apply(A, B, cr_vcross(p->ra, t), cr_vcross(p->rb, t), t, p->pt);
@@ -304,9 +304,10 @@ typedef struct cr_rows_ctx {
 static void cr_rows_levers(const carom_world *w, const cr_contact *c, cr_rows_ctx *x)
 {
     int k;
+    (void)w;
     for (k = 0; k < c->count; ++k) {
-        x->la[k] = cr_normal_lever(w, c->a, c->pts[k].ra, c->n);
-        x->lb[k] = cr_normal_lever(w, c->b, c->pts[k].rb, c->n);
+        x->la[k] = cr_contact_lever_a(c, c->pts[k].ra);
+        x->lb[k] = cr_contact_lever_b(c, c->pts[k].rb);
     }
 }
 
@@ -900,8 +901,8 @@ int cr_solver_restitution(carom_world *w)
                 pb = cr_max(cr_add(p->pp, d), cr_neg(p->pn));
                 d = cr_sub(pb, p->pp);
                 p->pp = pb;
-                cr_apply(A, B, cr_normal_lever(w, c->a, p->ra, c->n),
-                         cr_normal_lever(w, c->b, p->rb, c->n), c->n, d);
+                cr_apply(A, B, cr_contact_lever_a(c, p->ra), cr_contact_lever_b(c, p->rb),
+                         c->n, d);
                 change = cr_max(change, cr_abs(d));
                 biggest = cr_max(biggest, cr_abs(pb));
             }
