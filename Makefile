@@ -43,6 +43,9 @@ include tools/validation/validation.mk
 # (tools/bench/bench.mk): make bench, bench-quick, bench-build. Speed and
 # memory targets live there, not in unit tests.
 include tools/bench/bench.mk
+# make box2d-v3 B2V3_DIR=...: the Box2D v3 harness build/carom-box2d-v3
+# (tools/box2d_v3/box2d_v3.mk; Box2D v3 built outside the project).
+include tools/box2d_v3/box2d_v3.mk
 # Error against run time (tools/accuracy/accuracy.mk): make accuracy,
 # make accuracy-check.
 include tools/accuracy/accuracy.mk
@@ -254,7 +257,8 @@ help:
 	@echo "  make bench           carom's methods against Box2D 2.4.1 (and v3 with B2V3_DIR=) at 10^2..10^5 bodies: docs/benchmarks.md, docs/bench-*.png (~10 min)"
 	@echo "  make bench-quick     the same at 10^2 and 10^3 bodies, report under $(BUILD)/bench/ (~1 min)"
 	@echo "  make bench-build     $(BUILD)/carom-bench and $(BUILD)/carom-bench-ops only"
-	@echo "  make stress          every stress scene through carom and Box2D: docs/stability.md (~2 min)"
+	@echo "  make stress          every stress scene through carom and Box2D 2.4.1 (and v3 with B2V3_DIR=): docs/stability.md (~2 min)"
+	@echo "  make box2d-v3        build/carom-box2d-v3, scene files through Box2D v3 (needs B2V3_DIR=, tools/box2d_v3/BUILDING.md)"
 	@echo "  make accuracy        error against run time, every method and Box2D over dt 1/15..1/3840: docs/accuracy.md and figures (a few minutes)"
 	@echo "  make bench-box2d     the pyramid and pour scenes timed against Box2D 2.4.1, one run at a time: events within 2x, discrete no slower (~1 min)"
 	@echo "  make stress-scenes   regenerate tools/scenes/stress (python3)"
@@ -274,6 +278,7 @@ help:
 	@echo "other"
 	@echo "  make deps            install the unit tests' packages with apt-get if missing (when root or sudo)"
 	@echo "  make box2d-deps      the same for Box2D 2.4.1 and g++"
+	@echo "  make box2d-v3-deps   check that B2V3_DIR (or B2V3_INC, B2V3_LIB) holds Box2D v3's header and library"
 	@echo "  make clean           remove $(BUILD)/"
 	@echo "  make fuzz-clean      remove $(BUILD)/fuzz/"
 	@echo "  make help            this list"

@@ -4,8 +4,11 @@
 #   make -f Makefile -f tools/stress/stress.mk stress-check
 #
 #   make stress          every scene of tools/scenes/stress through carom
-#                        (events, discrete), Box2D 2.4.1 and, if
-#                        STRESS_V3=PATH is given, the Box2D v3 harness;
+#                        (events, discrete), Box2D 2.4.1 and, with
+#                        B2V3_DIR=PREFIX (Box2D v3 built outside the
+#                        project, tools/box2d_v3/BUILDING.md), the Box2D v3
+#                        harness build/carom-box2d-v3, built first (or any
+#                        harness given as STRESS_V3=PATH);
 #                        writes docs/stability.md and docs/stability-*.png;
 #                        fails if a carom result fails (~10 min on 2 cores)
 #   make stress-check    the checker's self-test (tools/stress/selftest.sh),
@@ -20,7 +23,10 @@ stress_default_goal := $(.DEFAULT_GOAL)
 
 STRESS_CHECK := $(BUILD)/stress_check
 STRESS_JOBS ?= 2
-STRESS_V3 ?=
+# B2V3_LIB and B2V3_BIN come from tools/box2d_v3/box2d_v3.mk when the
+# Makefile includes it.
+STRESS_V3_BUILD := $(if $(B2V3_LIB),$(B2V3_BIN))
+STRESS_V3 ?= $(STRESS_V3_BUILD)
 STRESS_BOX2D := $(if $(shell pkg-config --exists box2d 2>/dev/null && echo yes),$(BOX2D_BIN))
 STRESS_ARGS = --carom $(CLI) --box2d $(BOX2D_BIN) --checker $(STRESS_CHECK) \
     --jobs $(STRESS_JOBS) $(if $(STRESS_V3),--v3 $(STRESS_V3))
@@ -35,7 +41,7 @@ BENCH_BOX2D_SCENES ?= pyramid-b20,pyramid-b40,pour-500,pyramid-b20-s0.01,pyramid
 $(STRESS_CHECK): tools/stress/stress_check.c tools/scene.h $(wildcard include/*.h) $(TOOL_OBJ) $(LIB) | $(BUILD)/tools
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) tools/stress/stress_check.c $(TOOL_OBJ) $(LIB) -o $@ -lm
 
-stress: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D)
+stress: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D) $(STRESS_V3_BUILD)
 	@sh tools/ensure-deps.sh plot
 	sh tools/stress/run.sh $(STRESS_ARGS) --report docs/stability.md
 
