@@ -65,8 +65,10 @@ typedef struct cr_impact_row {
     float la[CR_MANIFOLD_POINTS], lb[CR_MANIFOLD_POINTS];
                      /* normal lever arms r x n (0 for circles) */
     float k11, k12, k22; /* 2 points: the normal effective-mass matrix */
-    int block;       /* 2 points solved as one 2x2 problem */
-    int impact;      /* approaching faster than the rest speed */
+    float impulse_full; /* sum of pn as first solved, while the energy
+                           limit (events.c) solves the instant again */
+    unsigned char block;  /* 2 points solved as one 2x2 problem */
+    unsigned char impact; /* approaching faster than the rest speed */
 } cr_impact_row;
 
 /* A touching pair (touch.c): slots a < b; CR_TOUCH_SENSOR in b if one of
@@ -148,6 +150,10 @@ struct carom_world {
     int *direct_u;              /* matrix, right-hand side and unknowns */
     int direct_cap;             /* (row * 8 + kind), at most this many */
     int impacts_this_step;
+    float instant_t;          /* time of the last impact instant this step */
+    int instant_stamp;        /* mark stamp of the first instant at it */
+    int instant_unsettled;    /* an instant at it ended unsettled */
+    int rows_settled;         /* the island solve settled (cr_rows_solve) */
     int budget_hit;
     int resumed_searches;     /* impact searches resumed this step after an
                                  instant found the pair still apart */

@@ -502,6 +502,115 @@ START_TEST(test_dense_elastic_gas_keeps_kinetic_energy_over_6000_steps)
 }
 END_TEST
 
+/*
+ * A box spinning into a static wall, elastic (e = 1), friction 0.8, no
+ * gravity. Newton's law with Coulomb friction can make energy here: the
+ * normal impulse's torque turns the contact point's sliding around, and
+ * sticking then needs friction along the sliding the point had, which
+ * does positive work (this box left the wall with 1.56 times its kinetic
+ * energy). An impact may not add energy: the kinetic energy after the
+ * bounce is at most the energy before, computed from the definition (box
+ * mass and inertia from its sides), and the box did bounce.
+ */
+START_TEST(test_spinning_box_bouncing_off_a_wall_with_friction_makes_no_energy)
+{
+    static const carom_method methods[] = {CAROM_METHOD_EVENTS, CAROM_METHOD_FIRST_IMPACT};
+    static const double spins[] = {-30.0, -20.0, 30.0};
+    const double hx = 0.07, hy = 0.043, rho = 1.0, vx0 = -1.3, angle = 0.7;
+    const double m = rho * 4.0 * hx * hy;
+    const double inertia = m * (4.0 * hx * hx + 4.0 * hy * hy) / 12.0;
+    int mi, si;
+    for (mi = 0; mi < 2; ++mi)
+        for (si = 0; si < 3; ++si) {
+            carom_world_def wd = def_for(methods[mi], 0.0f, 1.0f / 60.0f, 2);
+            tw t = tw_make(&wd);
+            carom_body_def bd = carom_default_body_def();
+            carom_body_state st;
+            double e0, e1;
+            int id, wall;
+            wall = add_static_box(&t, 0.5f, 2.0f, -0.8f, 0.0f, 1.0f);
+            carom_body_def_set_box(&bd, (float)hx, (float)hy);
+            bd.rotation.c = (float)cos(angle);
+            bd.rotation.s = (float)sin(angle);
+            bd.velocity.x = (float)vx0;
+            bd.angular_velocity = (float)spins[si];
+            bd.density = (float)rho;
+            bd.restitution = 1.0f;
+            bd.friction = 0.8f;
+            id = tw_add(&t, &bd);
+            /* the wall's friction too (a contact takes the mean) */
+            ck_assert_int_eq(carom_body_set_friction(t.w, wall, 0.8f), CAROM_OK);
+            e0 = 0.5 * m * vx0 * vx0 + 0.5 * inertia * spins[si] * spins[si];
+            tw_steps(&t, 30);
+            st = tw_state(&t, id);
+            e1 = 0.5 * m * ((double)st.velocity.x * st.velocity.x +
+                            (double)st.velocity.y * st.velocity.y) +
+                 0.5 * inertia * (double)st.angular_velocity * st.angular_velocity;
+            ck_assert_msg(st.velocity.x > 0.0f, "method %d spin %g: no bounce", mi, spins[si]);
+            ck_assert_msg(e1 <= e0 * (1.0 + 2e-4),
+                          "method %d spin %g: kinetic energy %.6f of the start", mi,
+                          spins[si], e1 / e0);
+            tw_free(&t);
+        }
+}
+END_TEST
+
+/*
+ * A 48 kg box in a corner of two static walls, a 300 kg ball against it
+ * and a 4.6e6 kg ball driving that ball in at 57 m/s; friction 0.7, no
+ * gravity (so no contact is resting: every approach is an impact). The
+ * island's sweeps cannot settle such a wedge. Its solve was taken again
+ * and again at one instant, each time taking a little more of the heavy
+ * ball's momentum: 98000 impacts in 100 steps, the impact budget met.
+ * The wedge needs a few impacts a step, and no budget.
+ */
+START_TEST(test_wedged_box_under_a_heavy_ball_takes_few_impacts)
+{
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 0.01f, 5);
+    tw t = tw_make(&wd);
+    carom_body_def bd = carom_default_body_def();
+    carom_stats stats;
+    int i;
+    bd.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&bd, 20.0f, 2.0f);
+    bd.position.x = 0.0f;
+    bd.position.y = 12.0f;
+    bd.friction = 0.7f;
+    (void)tw_add(&t, &bd);
+    carom_body_def_set_box(&bd, 2.0f, 20.0f);
+    bd.position.x = 12.0f;
+    bd.position.y = 0.0f;
+    (void)tw_add(&t, &bd);
+    bd.type = CAROM_BODY_DYNAMIC;
+    carom_body_def_set_box(&bd, 1.9f, 0.9f);
+    bd.position.x = 8.2f;
+    bd.position.y = 8.2f;
+    bd.rotation.c = (float)cos(0.8);
+    bd.rotation.s = (float)sin(0.8);
+    bd.mass = 48.0f;
+    (void)tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    bd.radius = 2.1f;
+    bd.friction = 0.7f;
+    bd.position.x = 4.0f;
+    bd.position.y = 4.0f;
+    bd.mass = 300.0f;
+    (void)tw_add(&t, &bd);
+    bd.position.x = -0.5f;
+    bd.position.y = -0.5f;
+    bd.velocity.x = 40.0f;
+    bd.velocity.y = 40.0f;
+    bd.mass = 4.6e6f;
+    (void)tw_add(&t, &bd);
+    for (i = 0; i < 100; ++i)
+        tw_steps(&t, 1);
+    ck_assert_int_eq(carom_world_get_stats(t.w, &stats), CAROM_OK);
+    ck_assert_msg(stats.budget_steps == 0, "%ld steps met the impact budget", stats.budget_steps);
+    ck_assert_msg(stats.impacts < 1000, "%ld impacts in 100 steps", stats.impacts);
+    tw_free(&t);
+}
+END_TEST
+
 /* A row of N equal balls in place, each `gap` from the next, struck at
  * one end by a ball at V (e = 1, no gravity). Contact at t = 1 s. */
 static tw cradle(carom_method m, int n, float gap, float v)
@@ -998,6 +1107,8 @@ Suite *suite_events(void)
     tcase_add_test(tc, test_parting_boxes_after_an_elastic_impact_keep_their_energy);
     tcase_add_test(tc, test_elastic_gas_of_1000_circles_keeps_kinetic_energy);
     tcase_add_test(tc, test_dense_elastic_gas_keeps_kinetic_energy_over_6000_steps);
+    tcase_add_test(tc, test_spinning_box_bouncing_off_a_wall_with_friction_makes_no_energy);
+    tcase_add_test(to, test_wedged_box_under_a_heavy_ball_takes_few_impacts);
     tcase_add_test(to, test_cradle_with_gaps_passes_the_impulse_along_one_impact_at_a_time);
     tcase_add_test(to, test_touching_row_takes_a_strike_as_one_simultaneous_impact);
     tcase_add_test(to, test_first_impact_method_takes_chained_impacts_late);
