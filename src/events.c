@@ -1238,12 +1238,13 @@ static void cr_limit_impact_energy(carom_world *w, int nb, int nr)
     }
 }
 
-/* Contact of pair k at local time t to the solver (a pair without one gets
- * it made, as it is now); -2: no contact capacity left. */
+/* Contact of pair k at local time t to the solver, its normal and points
+ * as they are now (a pair without one gets it made); -2: no contact
+ * capacity left. */
 static int cr_pair_to_solver(carom_world *w, int k, float t)
 {
     cr_pair *p = &w->pairs[k];
-    int c;
+    int c, had = p->contact >= 0;
     if (cr_moving(&w->bodies[p->a]))
         cr_sync(&w->bodies[p->a], &w->drift[p->a], t);
     if (cr_moving(&w->bodies[p->b]))
@@ -1251,6 +1252,10 @@ static int cr_pair_to_solver(carom_world *w, int k, float t)
     c = cr_contact_add(w, k);
     if (c < 0)
         return c;
+    if (had && cr_gt(t, 0.0f))
+        cr_contact_remake(w, &w->contacts[c]);
+    p->toi = CR_NEVER;
+    p->solved = 1;
     w->contacts[c].flags |= CR_CONTACT_SOLVE;
     cr_solver_activate(w, p->a);
     cr_solver_activate(w, p->b);
