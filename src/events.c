@@ -1133,18 +1133,6 @@ static int cr_island_grow(carom_world *w, int *nb, int nr, float t)
     return nr;
 }
 
-/* Kinetic energy of body i at velocity (v, om). */
-static float cr_kinetic_of(const carom_world *w, int i, cr_v2 v, float om)
-{
-    const cr_body_info *in = &w->info[i];
-#if CAROM_ENABLE_ROTATION
-    return cr_mul(0.5f, cr_add(cr_mul(in->m, cr_vdot(v, v)), cr_mul(in->I, cr_mul(om, om))));
-#else
-    (void)om; /* no body turns */
-    return cr_mul(0.5f, cr_mul(in->m, cr_vdot(v, v)));
-#endif
-}
-
 /*
  * No impact makes energy. Newton's law (vn+ = -e vn-) with Coulomb
  * friction can: where the normal impulse's torque turns a point's sliding
@@ -1174,8 +1162,8 @@ static void cr_limit_impact_energy(carom_world *w, int nb, int nr)
         const cr_body *b = &w->bodies[id];
         if (b->type != CAROM_BODY_DYNAMIC)
             return;
-        before = cr_add(before, cr_kinetic_of(w, id, w->drift[id].v_pre, w->drift[id].w_pre));
-        after = cr_add(after, cr_kinetic_of(w, id, b->v, b->w));
+        before = cr_add(before, cr_kinetic(&w->info[id], w->drift[id].v_pre, w->drift[id].w_pre));
+        after = cr_add(after, cr_kinetic(&w->info[id], b->v, b->w));
     }
     if (!cr_gt(after, cr_mul(before, cr_add(1.0f, CR_IMPACT_ENERGY_TOL))))
         return;
@@ -1205,22 +1193,18 @@ static void cr_limit_impact_energy(carom_world *w, int nb, int nr)
         const cr_body *b = &w->bodies[id];
         cr_v2 dv = cr_vsub(w->island_v[i], b->v);
         float dw = cr_sub(w->island_w[i], b->w);
-        e0 = cr_add(e0, cr_kinetic_of(w, id, b->v, b->w));
+        e0 = cr_add(e0, cr_kinetic(&w->info[id], b->v, b->w));
 #if CAROM_ENABLE_ROTATION
         lin = cr_add(lin, cr_add(cr_mul(w->info[id].m, cr_vdot(b->v, dv)),
                                  cr_mul(w->info[id].I, cr_mul(b->w, dw))));
 #else
         lin = cr_add(lin, cr_mul(w->info[id].m, cr_vdot(b->v, dv)));
 #endif
-        quad = cr_add(quad, cr_kinetic_of(w, id, dv, dw));
+        quad = cr_add(quad, cr_kinetic(&w->info[id], dv, dw));
     }
     room = cr_max(cr_sub(before, e0), 0.0f);
     if (cr_gt(quad, 0.0f))
-        s = cr_clamp(cr_div(cr_add(cr_neg(lin),
-                                   cr_sqrt(cr_add(cr_mul(lin, lin),
-                                                  cr_mul(cr_mul(4.0f, quad), room)))),
-                            cr_mul(2.0f, quad)),
-                     0.0f, 1.0f);
+        s = cr_energy_share(lin, quad, room);
     for (i = 0; i < nb; ++i) {
         cr_body *b = &w->bodies[w->island[i]];
         b->v = cr_vmadd(b->v, s, cr_vsub(w->island_v[i], b->v));

@@ -698,7 +698,7 @@ static int cr_root(int *parent, int i)
     return i;
 }
 
-static float cr_kinetic(const cr_body_info *in, cr_v2 v, float om)
+float cr_kinetic(const cr_body_info *in, cr_v2 v, float om)
 {
 #if CAROM_ENABLE_ROTATION
     return cr_mul(0.5f, cr_add(cr_mul(in->m, cr_vdot(v, v)), cr_mul(in->I, cr_mul(om, om))));
@@ -706,6 +706,12 @@ static float cr_kinetic(const cr_body_info *in, cr_v2 v, float om)
     (void)om; /* no body turns */
     return cr_mul(0.5f, cr_mul(in->m, cr_vdot(v, v)));
 #endif
+}
+
+float cr_energy_share(float lin, float quad, float room)
+{
+    float disc = cr_add(cr_mul(lin, lin), cr_mul(cr_mul(4.0f, quad), room));
+    return cr_clamp(cr_div(cr_add(cr_neg(lin), cr_sqrt(disc)), cr_mul(2.0f, quad)), 0.0f, 1.0f);
 }
 
 /*
@@ -804,7 +810,7 @@ static int cr_limit_bounce_energy(carom_world *w)
      * E(s) <= max(E_ref, E_pre) */
     for (i = 0; i < w->slot_count; ++i) {
         cr_solver_body *sr = &w->sbody[i];
-        float cap, after, room, disc;
+        float cap, after, room;
         if (parent[i] != i)
             continue;
         CR_E_SCALE(sr) = 1.0f;
@@ -816,11 +822,7 @@ static int cr_limit_bounce_energy(carom_world *w)
             !cr_gt(CR_E_QUAD(sr), 0.0f))
             continue;
         room = cr_max(cr_sub(cap, CR_E_PRE(sr)), 0.0f);
-        disc = cr_add(cr_mul(CR_E_LIN(sr), CR_E_LIN(sr)),
-                      cr_mul(cr_mul(4.0f, CR_E_QUAD(sr)), room));
-        CR_E_SCALE(sr) = cr_clamp(cr_div(cr_add(cr_neg(CR_E_LIN(sr)), cr_sqrt(disc)),
-                                         cr_mul(2.0f, CR_E_QUAD(sr))),
-                                  0.0f, 1.0f);
+        CR_E_SCALE(sr) = cr_energy_share(CR_E_LIN(sr), CR_E_QUAD(sr), room);
         limited = 1;
     }
     if (!limited)

@@ -85,4 +85,13 @@ float cr_contact_approach(const carom_world *w, const cr_contact *c);
 /* The approach speed above which contact (a, b) is an impact. */
 float cr_rest_speed(const carom_world *w, int a, int b);
 
+/* Kinetic energy of a body of info `in` at velocity (v, om). */
+float cr_kinetic(const cr_body_info *in, cr_v2 v, float om);
+
+/* The largest s in [0, 1] with lin s + quad s^2 <= room (quad > 0,
+ * room >= 0): how much of a velocity change whose energy is
+ * E(s) = E(0) + lin s + quad s^2 may be kept without passing
+ * E(0) + room (the energy limits of solver.c and events.c). */
+float cr_energy_share(float lin, float quad, float room);
+
 #endif /* CAROM_SOLVER_H */
