@@ -245,6 +245,32 @@ static float cr_impact_speed(const carom_world *w, int a, int b, float scale)
     return cr_add(cr_rest_speed(w, a, b), cr_mul(CR_APPROACH_REL_TOL, scale));
 }
 
+/* A polygon of the pair turning so fast that its extent sweeps more
+ * than CR_PIVOT_REACH slops before the step ends: touching (and not
+ * approaching), the pair is on a pivot, searched past for the next part
+ * of it to come down (the far corner of a box spun by a corner's impact,
+ * or tipping onto its face), not a contact for the solver, which sees
+ * only the points it was made with. Not a resting contact (those stay
+ * the solver's), and not in the first-impact method, which searches a
+ * pair once a step. */
+#define CR_PIVOT_REACH 2.0f
+
+static int cr_turns_over(const carom_world *w, int i, float t)
+{
+    const cr_body *b = &w->bodies[i];
+    return !CR_BODY_IS_CIRCLE(b) && cr_moving(b) &&
+           cr_gt(cr_mul(cr_mul(cr_abs(b->w), w->info[i].shape.extent), cr_sub(w->def.dt, t)),
+                 cr_mul(CR_PIVOT_REACH, w->scale.slop));
+}
+
+static int cr_pivots(const carom_world *w, const cr_pair *p, float t)
+{
+    if (w->method == CAROM_METHOD_FIRST_IMPACT ||
+        (p->contact >= 0 && (w->contacts[p->contact].flags & CR_CONTACT_RESTING)))
+        return 0;
+    return cr_turns_over(w, p->a, t) || cr_turns_over(w, p->b, t);
+}
+
 /* Next impact of pair k from local time t0: into p->toi and the heap. */
 static void cr_pair_search(carom_world *w, int k, float t0)
 {
@@ -288,18 +314,28 @@ static void cr_pair_search(carom_world *w, int k, float t0)
         /* touching now: an impact at once if approaching fast; otherwise
          * a contact for the solver */
         float recede, t1;
+        int pivot = 0;
         approach = cr_approach_speed(&A, &B, t0, slop, &scale, &recede);
         if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale))) {
             p->toi = t0;
-        } else if (cr_gt(recede, cr_impact_speed(w, p->a, p->b, scale))) {
+        } else if (cr_gt(recede, cr_impact_speed(w, p->a, p->b, scale)) ||
+                   (pivot = cr_pivots(w, p, t0)) != 0) {
             /* every touching point leaves fast (a body rebounding off a
              * corner): the pair is parting, no contact. Where they have
              * left, another part of it may still come down within the
              * step (the far corner of a box landing nearly flat): that is
              * an impact of its own, at its instant (or, arriving slowly,
-             * a contact for the solver) */
-            t1 = cr_add(t0, cr_div(cr_mul(2.0f, slop), recede));
-            if (cr_lt(t1, dt) && (found = cr_time_of_impact(&A, &B, t1, dt, tol, &toi)) != 0) {
+             * a contact for the solver). A pair on a pivot (a polygon
+             * turning on the corner a plastic impact left touching) is
+             * searched past it: its next corner may come down within the
+             * step, which the solver would not see */
+            if (pivot) {
+                found = cr_time_of_impact_pivot(&A, &B, t0, dt, tol, slop, &toi);
+            } else {
+                t1 = cr_add(t0, cr_div(cr_mul(2.0f, slop), recede));
+                found = cr_lt(t1, dt) ? cr_time_of_impact(&A, &B, t1, dt, tol, &toi) : 0;
+            }
+            if (found) {
                 if (found == CR_TOI_RESUME) {
                     p->toi = toi;
                     p->met |= CR_PAIR_RESUME;
@@ -1342,11 +1378,13 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         const cr_impact_row *r = &w->rows[i];
         const cr_pair *p = &w->pairs[r->pair];
         /* a contact the impact leaves touching is the solver's again, for
-         * this substep's relax and position correction too */
+         * this substep's relax and position correction too (unless it is
+         * on a pivot: its pair search below decides) */
         if (p->contact >= 0 &&
             (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING) &&
             !cr_gt(cr_contact_approach(w, &w->contacts[p->contact]),
-                   cr_rest_speed(w, r->a, r->b))) {
+                   cr_rest_speed(w, r->a, r->b)) &&
+            !cr_pivots(w, p, t)) {
             /* its normal and points as they are now, not at the step
              * start: a stale normal would take energy out of a pair that
              * separates along the true one */
@@ -1368,10 +1406,15 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
     CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
     if (!any) {
         /* nothing changed course: the seeds were not impacts after all;
-         * their contacts are the solver's */
+         * their contacts are the solver's (a pair on a pivot is searched
+         * on past it instead, a bounded number of times a step) */
         for (i = 0; i < seeds && i < nr; ++i) {
             const cr_pair *p = &w->pairs[w->rows[i].pair];
-            if (p->contact >= 0) {
+            if (cr_pivots(w, p, t) &&
+                w->resumed_searches < w->def.max_impacts) {
+                ++w->resumed_searches;
+                cr_pair_search(w, w->rows[i].pair, t);
+            } else if (p->contact >= 0) {
                 w->contacts[p->contact].flags |= CR_CONTACT_SOLVE;
                 cr_solver_activate(w, p->a);
                 cr_solver_activate(w, p->b);

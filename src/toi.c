@@ -458,9 +458,15 @@ static float cr_separation_at(const cr_mover *A, const cr_mover *B, float t)
     return cr_separation(A->s, xa, qa, B->s, xb, qb);
 }
 
-/* Conservative advancement: step by separation / closing-speed bound. */
+/* Conservative advancement: step by separation / closing-speed bound.
+ * depth > 0: the pair starts touching on a pivot (a corner a fast-turning
+ * polygon turns on); until the separation first exceeds depth the search
+ * steps by (separation + depth) / bound instead, so that no part of the
+ * pair passes -depth unseen, and a separation at or below -depth / 2 is
+ * the impact: another part of the pair has come down while the pivot
+ * still touched. Past that, depth is 0. */
 static int cr_toi_advance(const cr_mover *A, const cr_mover *B, float t0,
-                          float t1, float tol, float *out)
+                          float t1, float tol, float depth, float *out)
 {
     int it;
     float t = t0, span = cr_sub(t1, t0);
@@ -483,6 +489,20 @@ static int cr_toi_advance(const cr_mover *A, const cr_mover *B, float t0,
         float sep = cr_separation_at(A, B, t);
         if (!cr_finite(sep))
             return 0;
+        if (cr_gt(depth, 0.0f) && cr_le(sep, depth)) {
+            if (cr_gt(sep, cr_mul(-0.5f, depth))) {
+                /* still on the pivot: step so that nothing can pass
+                 * -depth (at least depth / 2 / vmax a step) */
+                t = cr_add(t, cr_div(cr_add(sep, depth), vmax));
+                if (cr_gt(t, t1))
+                    return 0;
+                continue;
+            }
+            /* something came down while the pivot still touched: an
+             * impact if it approaches (below) */
+        } else {
+            depth = 0.0f;
+        }
         if (cr_le(sep, tol)) {
             float scale;
             float approach = cr_approach_speed(A, B, t, cr_mul(2.0f, tol), &scale, 0);
@@ -519,7 +539,7 @@ int cr_time_of_impact(const cr_mover *A, const cr_mover *B, float t0, float t1,
     }
 #if CAROM_ENABLE_POLYGONS
     else if (cr_rotates(A) || cr_rotates(B)) {
-        hit = cr_toi_advance(A, B, t0, t1, tol, &s);
+        hit = cr_toi_advance(A, B, t0, t1, tol, 0.0f, &s);
     } else if (A->s->kind == CAROM_SHAPE_POLYGON && B->s->kind == CAROM_SHAPE_CIRCLE) {
         hit = cr_toi_circle_polygon(A, B, t0, hi, &s);
     } else if (A->s->kind == CAROM_SHAPE_CIRCLE) {
@@ -532,6 +552,27 @@ int cr_time_of_impact(const cr_mover *A, const cr_mover *B, float t0, float t1,
     }
 #else
     (void)tol;
+#endif
+    if (hit)
+        *toi = cr_add(t0, s);
+    return hit;
+}
+
+int cr_time_of_impact_pivot(const cr_mover *A, const cr_mover *B, float t0, float t1,
+                            float tol, float depth, float *toi)
+{
+    float s = 0.0f;
+    int hit = 0;
+    if (!cr_gt(cr_sub(t1, t0), 0.0f))
+        return 0;
+#if CAROM_ENABLE_POLYGONS
+    if (cr_rotates(A) || cr_rotates(B))
+        hit = cr_toi_advance(A, B, t0, t1, tol, depth, &s);
+#else
+    (void)A;
+    (void)B;
+    (void)tol;
+    (void)depth;
 #endif
     if (hit)
         *toi = cr_add(t0, s);

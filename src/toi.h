@@ -64,4 +64,16 @@ float cr_approach_speed(const cr_mover *A, const cr_mover *B, float t,
 int cr_time_of_impact(const cr_mover *A, const cr_mover *B, float t0, float t1,
                       float tol, float *toi);
 
+/*
+ * The same for a pair that touches at t0 on a pivot: a corner a
+ * fast-turning polygon turns on after a plastic impact, touching but not
+ * approaching. The pivot lifts off or slides; the search looks past it
+ * for the next part of the pair to come down, which may arrive while the
+ * pivot still touches: then the impact is where the separation is
+ * between -depth / 2 and -depth. Only rotating polygon pairs (otherwise
+ * 0: nothing found).
+ */
+int cr_time_of_impact_pivot(const cr_mover *A, const cr_mover *B, float t0, float t1,
+                            float tol, float depth, float *toi);
+
 #endif /* CAROM_TOI_H */

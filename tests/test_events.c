@@ -199,6 +199,63 @@ START_TEST(test_fast_bullet_never_passes_a_thin_dynamic_wall)
 END_TEST
 
 /*
+ * A plastic, frictionless box (1.25 m x 0.41 m) driven tilted into a
+ * thick static wall at 100 to 1132 m/s. The first corner's impact leaves
+ * it spinning at up to 1400 rad/s on that corner, and its other corner
+ * comes down a fraction of a millisecond later. A rigid box cannot enter
+ * the wall: no corner may be deeper than the linear slop, at any step.
+ * The contact solver, which was handed the pivot, cannot follow such a
+ * turn (the box ended 1.17 m deep, its centre inside the wall).
+ */
+START_TEST(test_box_spun_by_a_corner_impact_stays_out_of_the_wall)
+{
+    static const float speeds[3] = {100.0f, 300.0f, 1132.0f};
+    static const float angles[2] = {-0.54f, -1.2f};
+    const float hx = 0.625f, hy = 0.2045f, face = -28.7f, slop = 0.001f;
+    int a, v;
+    for (a = 0; a < 2; ++a)
+        for (v = 0; v < 3; ++v) {
+            carom_world_def wd = def_for(CAROM_METHOD_EVENTS, 0.0f, 1.0f / 60.0f, 2);
+            carom_body_def bd = carom_default_body_def();
+            double deepest = 0.0;
+            tw t;
+            int id, k, cx, cy;
+            wd.linear_slop = slop;
+            t = tw_make(&wd);
+            bd.type = CAROM_BODY_STATIC;
+            carom_body_def_set_box(&bd, 7.5f, 30.0f);
+            bd.position.x = face - 7.5f;
+            bd.restitution = 0.0f;
+            bd.friction = 0.0f;
+            (void)tw_add(&t, &bd);
+            bd.type = CAROM_BODY_DYNAMIC;
+            carom_body_def_set_box(&bd, hx, hy);
+            bd.position.x = face + 8.7f;
+            bd.rotation = carom_rot_from_angle(angles[a]);
+            bd.velocity.x = -speeds[v];
+            id = tw_add(&t, &bd);
+            for (k = 0; k < 60; ++k) {
+                carom_body_state st;
+                ck_assert_int_eq(carom_world_step(t.w), CAROM_OK);
+                st = tw_state(&t, id);
+                for (cx = -1; cx <= 1; cx += 2)
+                    for (cy = -1; cy <= 1; cy += 2) {
+                        double x = (double)st.position.x +
+                                   (double)st.rotation.c * cx * (double)hx -
+                                   (double)st.rotation.s * cy * (double)hy;
+                        if ((double)face - x > deepest)
+                            deepest = (double)face - x;
+                    }
+            }
+            ck_assert_msg(deepest <= (double)slop,
+                          "box at %g m/s, tilted %g rad: a corner %g m into the wall",
+                          (double)speeds[v], (double)angles[a], deepest);
+            tw_free(&t);
+        }
+}
+END_TEST
+
+/*
  * A 5 cm octagon turning 7.5 times a step (11312 rad/s, dt 1/240, one
  * substep) at 105 m/s towards a static wall 2 m thick (near face x =
  * 8.485): in the events methods it must never end a step inside or
@@ -1100,6 +1157,7 @@ Suite *suite_events(void)
     tcase_add_test(tn, test_fast_bullet_never_passes_a_thin_static_wall);
     tcase_add_test(tn, test_fast_bullet_never_passes_a_thin_dynamic_wall);
     tcase_add_test(tn, test_fast_turning_polygon_never_passes_a_wall);
+    tcase_add_test(tn, test_box_spun_by_a_corner_impact_stays_out_of_the_wall);
     tcase_add_test(tc, test_isolated_bodies_conserve_momentum);
     tcase_add_test(tc, test_impulse_into_a_sleeping_body_mid_step_wakes_it_next_step);
     tcase_add_test(tc, test_polygon_hit_off_centre_conserves_linear_and_angular_momentum);
