@@ -318,8 +318,8 @@ static void cr_pair_search(carom_world *w, int k, float t0)
         approach = cr_approach_speed(&A, &B, t0, slop, &scale, &recede);
         if (cr_gt(approach, cr_impact_speed(w, p->a, p->b, scale))) {
             p->toi = t0;
-        } else if (cr_gt(recede, cr_impact_speed(w, p->a, p->b, scale)) ||
-                   (pivot = cr_pivots(w, p, t0)) != 0) {
+        } else if ((pivot = cr_pivots(w, p, t0)) != 0 ||
+                   cr_gt(recede, cr_impact_speed(w, p->a, p->b, scale))) {
             /* every touching point leaves fast (a body rebounding off a
              * corner): the pair is parting, no contact. Where they have
              * left, another part of it may still come down within the
@@ -327,8 +327,9 @@ static void cr_pair_search(carom_world *w, int k, float t0)
              * an impact of its own, at its instant (or, arriving slowly,
              * a contact for the solver). A pair on a pivot (a polygon
              * turning on the corner a plastic impact left touching) is
-             * searched past it: its next corner may come down within the
-             * step, which the solver would not see */
+             * searched past it from now, leaving or not: its next corner
+             * may come down within the step, which the solver would not
+             * see, and before a slowly leaving pivot has left */
             if (pivot) {
                 found = cr_time_of_impact_pivot(&A, &B, t0, dt, tol, slop, &toi);
             } else {
