@@ -460,18 +460,20 @@ static float cr_separation_at(const cr_mover *A, const cr_mover *B, float t)
 
 /* Conservative advancement: step by separation / closing-speed bound.
  * depth > 0: the pair starts touching on a pivot (a corner a fast-turning
- * polygon turns on); until the separation first exceeds depth the search
- * steps by (separation + depth) / bound instead, so that no part of the
- * pair passes -depth unseen, and a separation at or below -depth / 2 is
- * the impact: another part of the pair has come down while the pivot
- * still touched. Past that, depth is 0. */
+ * polygon turns on), at a separation `base` (0, or below if it starts
+ * inside, within an impact's tolerance); until the separation first
+ * exceeds depth the search steps by (separation - base + depth) / bound
+ * instead, so that no part of the pair passes base - depth unseen. A
+ * separation at or below base - depth / 2 is the impact if the pair
+ * approaches there (another part of it has come down while the pivot
+ * still touched), and the new base if not. Past that, depth is 0. */
 static int cr_toi_advance(const cr_mover *A, const cr_mover *B, float t0,
                           float t1, float tol, float depth, float *out)
 {
     int it;
     float t = t0, span = cr_sub(t1, t0);
     cr_v2 p, u, q;
-    float vrel, wa, wb, vmax;
+    float vrel, wa, wb, vmax, base = 0.0f;
     cr_relative_motion(A, B, t0, &p, &u, &q);
     vrel = cr_add(cr_vlen(u), cr_mul(cr_mul(2.0f, cr_vlen(q)), span));
     wa = cr_add(cr_abs(cr_add(A->b->w, cr_mul(cr_sub(t0, A->d->t), A->d->alpha))),
@@ -490,19 +492,28 @@ static int cr_toi_advance(const cr_mover *A, const cr_mover *B, float t0,
         if (!cr_finite(sep))
             return 0;
         if (cr_gt(depth, 0.0f) && cr_le(sep, depth)) {
-            if (cr_gt(sep, cr_mul(-0.5f, depth))) {
-                /* still on the pivot: step so that nothing can pass
-                 * -depth (at least depth / 2 / vmax a step) */
-                t = cr_add(t, cr_div(cr_add(sep, depth), vmax));
-                if (cr_gt(t, t1))
-                    return 0;
-                continue;
+            if (it == 0 && cr_lt(sep, 0.0f))
+                base = sep; /* already that deep (an impact's tolerance) */
+            if (cr_le(sep, cr_sub(base, cr_mul(0.5f, depth)))) {
+                /* something came down while the pivot still touched: an
+                 * impact if it approaches; if not, this is the depth to
+                 * search past */
+                float scale = 0.0f;
+                if (cr_gt(cr_approach_speed(A, B, t, cr_mul(2.0f, tol), &scale, 0),
+                          cr_mul(CR_APPROACH_REL_TOL, scale))) {
+                    *out = cr_sub(t, t0);
+                    return 1;
+                }
+                base = sep;
             }
-            /* something came down while the pivot still touched: an
-             * impact if it approaches (below) */
-        } else {
-            depth = 0.0f;
+            /* still on the pivot: step so that nothing can pass
+             * base - depth (at least depth / 2 / vmax a step) */
+            t = cr_add(t, cr_div(cr_add(cr_sub(sep, base), depth), vmax));
+            if (cr_gt(t, t1))
+                return 0;
+            continue;
         }
+        depth = 0.0f;
         if (cr_le(sep, tol)) {
             float scale;
             float approach = cr_approach_speed(A, B, t, cr_mul(2.0f, tol), &scale, 0);
