@@ -386,6 +386,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->impacts_this_step = 0;
     w->budget_hit = 0;
     w->resumed_searches = 0;
+    w->pivot_searches = 0;
     w->event_count = 0;
     w->events_dropped = 0;
     w->error_body = -1;

@@ -157,6 +157,7 @@ struct carom_world {
     int budget_hit;
     int resumed_searches;     /* impact searches resumed this step after an
                                  instant found the pair still apart */
+    int pivot_searches;       /* searches past a pivot this step */
     int reorder;              /* impacts handed contacts to the solver */
 
     /* results */
