@@ -60,9 +60,18 @@ $(BENCH_DIR)/engine_none_v3.o: tools/bench/engine_none.c $(BENCH_H) | $(BENCH_DI
 $(BENCH_DIR)/engine_none_ops.o: tools/bench/engine_none.c $(BENCH_H) | $(BENCH_DIR)
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -DBENCH_NO_B2V3 -DBENCH_NO_BOX2D -c $< -o $@
 
-# The timing build: the plain library (no counters) and both Box2Ds. The
-# v3 object is rebuilt when B2V3_DIR changes between runs (.v3 stamp).
-$(BENCH_BIN): $(BENCH_C) $(BENCH_H) $(BENCH_DIR)/engine_box2d.o $(BENCH_V3_OBJ) $(LIB)
+# Which Box2D v3 the timing build links (none, or B2V3_LIB): rewritten
+# only when that changes, so that `make bench B2V3_DIR=...` after a build
+# without it (or the other way round) links the binary again.
+BENCH_V3_STAMP := $(BENCH_DIR)/v3.stamp
+.PHONY: bench-v3-stamp
+bench-v3-stamp: | $(BENCH_DIR)
+	@echo 'B2V3_LIB=$(B2V3_LIB)' | cmp -s - $(BENCH_V3_STAMP) || echo 'B2V3_LIB=$(B2V3_LIB)' > $(BENCH_V3_STAMP)
+$(BENCH_V3_STAMP): bench-v3-stamp
+
+# The timing build: the plain library (no counters) and both Box2Ds,
+# linked again when the v3 choice changes (the stamp above).
+$(BENCH_BIN): $(BENCH_C) $(BENCH_H) $(BENCH_DIR)/engine_box2d.o $(BENCH_V3_OBJ) $(BENCH_V3_STAMP) $(LIB)
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -c tools/bench/bench.c -o $(BENCH_DIR)/bench.o
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -c tools/bench/scenes.c -o $(BENCH_DIR)/scenes.o
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -c tools/bench/engine_carom.c -o $(BENCH_DIR)/engine_carom.o
