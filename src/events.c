@@ -321,8 +321,9 @@ static void cr_pair_search(carom_world *w, int k, float t0)
     }
     sep = cr_separation(A.s, xa, qa, B.s, xb, qb);
     if (cr_le(sep, tol)) {
-        /* touching now: an impact at once if approaching fast; otherwise
-         * a contact for the solver */
+        /* touching now: an impact at once if approaching fast; a search
+         * on if parting or on a pivot; otherwise a contact for the
+         * solver */
         float recede, t1;
         int pivot = 0;
         approach = cr_approach_speed(&A, &B, t0, slop, &scale, &recede);
