@@ -157,12 +157,45 @@ int cr_contact_add(carom_world *w, int pair);
 void cr_contact_remake(carom_world *w, cr_contact *c);
 
 #if CR_TWO_POINTS
-/* The 2x2 linear complementarity problem of a 2-point manifold: x >= 0,
- * y = K x + b >= 0, x_i y_i = 0, K = [k11 k12; k12 k22] positive definite;
- * 0 if no case fits (rounding at a nearly singular K). */
-int cr_lcp2(float k11, float k12, float k22, float b1, float b2, float *x1,
-            float *x2);
-#endif
+/*
+ * The 2x2 linear complementarity problem of a 2-point row:
+ *     find x >= 0 with y = K x + b >= 0 and x_i y_i = 0,
+ * K = [k11 k12; k12 k22] symmetric positive definite, by trying its four
+ * cases in turn (both points pushing, only one, none). 0 if none fits
+ * (rounding at a degenerate K). Inline: the solvers' sweeps solve one
+ * for every 2-point contact.
+ */
+CR_INLINE int cr_lcp2(float k11, float k12, float k22, float b1, float b2, float *x1,
+                      float *x2)
+{
+    float det = cr_sub(cr_mul(k11, k22), cr_mul(k12, k12));
+    float y1 = cr_div(cr_sub(cr_mul(k12, b2), cr_mul(k22, b1)), det);
+    float y2 = cr_div(cr_sub(cr_mul(k12, b1), cr_mul(k11, b2)), det);
+    if (cr_ge(y1, 0.0f) && cr_ge(y2, 0.0f)) {
+        *x1 = y1;
+        *x2 = y2;
+        return 1;
+    }
+    y1 = cr_div(cr_neg(b1), k11);
+    if (cr_ge(y1, 0.0f) && cr_ge(cr_add(cr_mul(k12, y1), b2), 0.0f)) {
+        *x1 = y1;
+        *x2 = 0.0f;
+        return 1;
+    }
+    y2 = cr_div(cr_neg(b2), k22);
+    if (cr_ge(y2, 0.0f) && cr_ge(cr_add(cr_mul(k12, y2), b1), 0.0f)) {
+        *x1 = 0.0f;
+        *x2 = y2;
+        return 1;
+    }
+    if (cr_ge(b1, 0.0f) && cr_ge(b2, 0.0f)) {
+        *x1 = 0.0f;
+        *x2 = 0.0f;
+        return 1;
+    }
+    return 0;
+}
+#endif /* CR_TWO_POINTS */
 
 /* The impulses to warm-start the next step, into w->warm (over the last
  * step's: call it when the step can no longer fail). */

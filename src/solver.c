@@ -112,7 +112,7 @@ static int cr_grounded(const carom_world *w, const cr_contact *c)
 }
 
 /* Separation of point p now, from the bodies' motion since the step start. */
-static float cr_current_sep(const cr_contact *c, const cr_contact_point *p,
+CR_INLINE float cr_current_sep(const cr_contact *c, const cr_contact_point *p,
                             const cr_solver_body *sa, const cr_solver_body *sb)
 {
     cr_v2 d = cr_vadd(cr_vsub(sb->dp, sa->dp),
@@ -229,7 +229,7 @@ CR_INLINE void cr_apply_to(cr_v2 *va, float *wa, float ima, float iia, cr_v2 *vb
 #endif
 }
 
-static void cr_apply(cr_body *A, cr_body *B, float la, float lb, cr_v2 dir,
+CR_INLINE void cr_apply(cr_body *A, cr_body *B, float la, float lb, cr_v2 dir,
                      float P)
 {
     cr_apply_to(&A->v, &A->w, A->inv_m, A->inv_I, &B->v, &B->w, B->inv_m, B->inv_I, la, lb,
@@ -279,7 +279,7 @@ void cr_solver_kick_and_warm(carom_world *w, const cr_substep *s)
 }
 
 
-static float cr_point_vn(cr_v2 va, float wa, cr_v2 vb, float wb, const cr_contact *c,
+CR_INLINE float cr_point_vn(cr_v2 va, float wa, cr_v2 vb, float wb, const cr_contact *c,
                          const cr_contact_point *p)
 {
     return cr_vdot(cr_vsub(cr_point_velocity(vb, wb, p->rb),
@@ -301,7 +301,7 @@ typedef struct cr_rows_ctx {
     float la[CR_MANIFOLD_POINTS], lb[CR_MANIFOLD_POINTS];
 } cr_rows_ctx;
 
-static void cr_rows_levers(const carom_world *w, const cr_contact *c, cr_rows_ctx *x)
+CR_INLINE void cr_rows_levers(const carom_world *w, const cr_contact *c, cr_rows_ctx *x)
 {
     int k;
     (void)w;
@@ -328,7 +328,7 @@ CR_INLINE float cr_rows_vn(const cr_rows_ctx *x, const cr_contact *c, int k)
  * impulses acc[] (>= 0) and targets vn + bias[] >= 0: both points as one
  * 2x2 problem when the manifold allows, else one after the other.
  */
-static void cr_normal_rows(cr_rows_ctx *x, const cr_contact *c, float *acc,
+CR_INLINE void cr_normal_rows(cr_rows_ctx *x, const cr_contact *c, float *acc,
                            const float *bias, const float *vn)
 {
     int k;
@@ -361,7 +361,7 @@ static void cr_normal_rows(cr_rows_ctx *x, const cr_contact *c, float *acc,
 
 /* ---- velocities ------------------------------------------------------------ */
 
-static void cr_rows_of_velocity(carom_world *w, const cr_contact *c, cr_rows_ctx *x)
+CR_INLINE void cr_rows_of_velocity(carom_world *w, const cr_contact *c, cr_rows_ctx *x)
 {
     cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
     x->va = &A->v;
@@ -410,7 +410,7 @@ static void cr_solve_friction_pair(carom_world *w, cr_contact *c)
 /* The velocity body `id` would have at time t of the step had no contact
  * acted on it since the step's start: its start velocity plus what its
  * acceleration gives it (static and kinematic bodies: none). */
-static void cr_free_velocity(const carom_world *w, int id, float t, cr_v2 *v, float *om)
+CR_INLINE void cr_free_velocity(const carom_world *w, int id, float t, cr_v2 *v, float *om)
 {
     const cr_body *b = &w->bodies[id], *b0 = &w->backup[id];
     *v = b0->v;
@@ -541,7 +541,7 @@ void cr_solver_solve(carom_world *w, const cr_substep *s, int first,
 
 /* ---- positions ---------------------------------------------------------------- */
 
-static void cr_rows_of_pseudo(carom_world *w, const cr_contact *c, cr_rows_ctx *x)
+CR_INLINE void cr_rows_of_pseudo(carom_world *w, const cr_contact *c, cr_rows_ctx *x)
 {
     cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
     x->va = &sa->vp;
@@ -555,7 +555,7 @@ static void cr_rows_of_pseudo(carom_world *w, const cr_contact *c, cr_rows_ctx *
     cr_rows_levers(w, c, x);
 }
 
-static float cr_pseudo_vn(carom_world *w, const cr_contact *c, int k)
+CR_INLINE float cr_pseudo_vn(carom_world *w, const cr_contact *c, int k)
 {
     const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
     return cr_point_vn(sa->vp, sa->wp, sb->vp, sb->wp, c, &c->pts[k]);
