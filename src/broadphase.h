@@ -44,7 +44,8 @@ typedef struct cr_proxy {
 typedef struct cr_broadphase {
     cr_proxy *proxies, *tmp; /* capacity bodies each: grid ones, then big */
     int *start;              /* bucket_cap + 1 bucket offsets */
-    int *count;              /* capacity + 1: sort counters */
+    int *count;              /* capacity + 1: sort counters (building:
+                                each item's bucket) */
     int capacity, bucket_cap;
     int grid_count, big_count, buckets;
     int xbits;               /* the table is 2^xbits cells wide */
@@ -75,7 +76,8 @@ int cr_broadphase_query(const cr_broadphase *bp, const cr_box *boxes,
                         const cr_box *q, cr_query_fn fn, void *ctx);
 
 /* Sort pairs by (a, b) in linear time (two counting passes over body
- * slots); tmp and count as in cr_broadphase. */
+ * slots; an insertion sort when the pairs are few for the slots); tmp and
+ * count as in cr_broadphase. */
 void cr_pairs_sort(cr_pair *pairs, cr_pair *tmp, int n, int *count, int slots);
 
 CR_INLINE int cr_boxes_overlap(const cr_box *p, const cr_box *q)

@@ -97,30 +97,36 @@
 
 void cr_pairs_link(carom_world *w)
 {
-    int i;
-    for (i = 0; i < w->slot_count; ++i)
-        w->pair_head[i] = -1;
+    /* (locals: the int stores could otherwise be into *w) */
+    int *head = w->pair_head, i, slots = w->slot_count;
+    cr_pair *pairs = w->pairs;
+    for (i = 0; i < slots; ++i)
+        head[i] = -1;
     for (i = w->pair_count - 1; i >= 0; --i) {
-        cr_pair *p = &w->pairs[i];
-        p->next_a = w->pair_head[p->a];
-        w->pair_head[p->a] = i;
-        p->next_b = w->pair_head[p->b];
-        w->pair_head[p->b] = i;
+        cr_pair *p = &pairs[i];
+        p->next_a = head[p->a];
+        head[p->a] = i;
+        p->next_b = head[p->b];
+        head[p->b] = i;
     }
 }
 
 void cr_drifts_begin(carom_world *w)
 {
-    int i;
-    for (i = 0; i < w->slot_count; ++i) {
-        cr_drift *d = &w->drift[i];
-        const cr_body *b = &w->bodies[i];
+    /* (locals: the stores into the drifts could otherwise be into *w) */
+    cr_drift *drift = w->drift;
+    const cr_body *bodies = w->bodies;
+    int i, slots = w->slot_count;
+    for (i = 0; i < slots; ++i) {
+        cr_drift *d = &drift[i];
+        const cr_body *b = &bodies[i];
         d->t = 0.0f;
-        d->alpha = 0.0f;
-        d->a = cr_v(0.0f, 0.0f);
         if (b->type == CAROM_BODY_DYNAMIC && (b->flags & CR_BODY_AWAKE)) {
             d->a = b->a;
             d->alpha = b->alpha;
+        } else {
+            d->a = cr_v(0.0f, 0.0f);
+            d->alpha = 0.0f;
         }
         ++d->version;
     }
@@ -128,10 +134,13 @@ void cr_drifts_begin(carom_world *w)
 
 void cr_sync_all(carom_world *w, float t)
 {
-    int i;
-    for (i = 0; i < w->awake_count; ++i) {
-        int id = w->awake[i];
-        cr_sync(&w->bodies[id], &w->drift[id], t);
+    cr_body *bodies = w->bodies;
+    cr_drift *drift = w->drift;
+    const int *awake = w->awake;
+    int i, n = w->awake_count;
+    for (i = 0; i < n; ++i) {
+        int id = awake[i];
+        cr_sync(&bodies[id], &drift[id], t);
     }
 }
 

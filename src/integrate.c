@@ -23,17 +23,12 @@
  */
 #include "integrate.h"
 
-cr_rot cr_rot_advance(cr_rot q, float angle)
-{
 #if CAROM_ENABLE_ROTATION
-    if (cr_eq(angle, 0.0f))
-        return q;
+cr_rot cr_rot_turn(cr_rot q, float angle)
+{
     return cr_rot_normalize(cr_rot_mul(cr_rot_from_angle(angle), q));
-#else
-    (void)angle;
-    return q;
-#endif
 }
+#endif
 
 void cr_pose_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *x,
                 cr_rot *q)
@@ -55,9 +50,9 @@ void cr_velocity_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *v,
     *w = cr_add(b->w, cr_mul(h, d->alpha));
 }
 
-carom_status cr_body_accel(const carom_world_def *def, int id,
-                           const cr_body *b, const cr_body_info *info,
-                           cr_v2 *a, float *alpha)
+carom_status cr_body_accel_all(const carom_world_def *def, int id,
+                               const cr_body *b, const cr_body_info *info,
+                               cr_v2 *a, float *alpha)
 {
     if (b->type != CAROM_BODY_DYNAMIC) {
         *a = cr_v(0.0f, 0.0f);

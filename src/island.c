@@ -17,14 +17,16 @@
 
 void cr_island_awake_list(carom_world *w)
 {
-    int i;
-    w->awake_count = 0;
-    for (i = 0; i < w->slot_count; ++i) {
-        const cr_body *b = &w->bodies[i];
-        if ((b->flags & CR_BODY_ALIVE) && (b->flags & CR_BODY_AWAKE) &&
+    /* (locals: a store into awake[] could otherwise be one into *w) */
+    const cr_body *bodies = w->bodies;
+    int *awake = w->awake, i, n = 0, slots = w->slot_count;
+    for (i = 0; i < slots; ++i) {
+        const cr_body *b = &bodies[i];
+        if ((b->flags & (CR_BODY_ALIVE | CR_BODY_AWAKE)) == (CR_BODY_ALIVE | CR_BODY_AWAKE) &&
             b->type != CAROM_BODY_STATIC)
-            w->awake[w->awake_count++] = i;
+            awake[n++] = i;
     }
+    w->awake_count = n;
 }
 
 void cr_island_wake(carom_world *w, int slot)

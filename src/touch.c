@@ -32,6 +32,20 @@ static void cr_touch_sort(carom_world *w, cr_touch *t, int n)
 {
     cr_touch *tmp = (cr_touch *)(void *)w->pair_tmp;
     int *count = w->bp.count, slots = w->slot_count, i;
+    if ((long)n * n <= 2L * slots) {
+        /* few touches for the slots: an insertion sort (stable, so the
+         * same order) without the four passes over every slot */
+        for (i = 1; i < n; ++i) {
+            cr_touch x = t[i];
+            int j = i;
+            while (j > 0 && cr_touch_less(&x, &t[j - 1])) {
+                t[j] = t[j - 1];
+                --j;
+            }
+            t[j] = x;
+        }
+        return;
+    }
     for (i = 0; i <= slots; ++i)
         count[i] = 0;
     for (i = 0; i < n; ++i)

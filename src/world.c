@@ -548,7 +548,19 @@ int cr_may_touch(const carom_world *w, int a, int b)
  * rest), or their filter says no. */
 static int cr_accept_pair(void *ctx, int a, int b)
 {
-    return cr_may_collide((const carom_world *)ctx, a, b);
+    const carom_world *w = (const carom_world *)ctx;
+    const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
+    const unsigned awake = CR_BODY_ALIVE | CR_BODY_AWAKE;
+    /* the usual pair first, without cr_may_collide's calls: an awake
+     * dynamic body (it moves, and may touch any body) with a body,
+     * neither a sensor nor filtered */
+    if (!((A->flags | B->flags) & (CR_BODY_SENSOR | CR_BODY_FILTERED)) &&
+        (((A->flags & awake) == awake && A->type == CAROM_BODY_DYNAMIC) ||
+         ((B->flags & awake) == awake && B->type == CAROM_BODY_DYNAMIC)))
+        return 1;
+    if (A->type == CAROM_BODY_STATIC && B->type == CAROM_BODY_STATIC)
+        return 0; /* (walls that meet at a corner) */
+    return cr_may_collide(w, a, b);
 }
 
 /* Candidate pairs from every body's box over the step. */
@@ -561,24 +573,31 @@ static carom_status cr_find_pairs(carom_world *w)
     for (i = 0; i < w->escaped_count; ++i)
         w->bodies[w->regrown[i]].flags &= (unsigned short)~CR_BODY_ESCAPED;
     w->escaped_count = 0;
-    for (i = 0; i < w->slot_count; ++i) {
-        cr_mover m;
-        if (!(w->bodies[i].flags & CR_BODY_ALIVE))
-            continue;
-        m.s = &w->info[i].shape;
-        m.b = &w->bodies[i];
-        m.d = &w->drift[i];
-        if (w->bodies[i].flags & CR_BODY_AWAKE)
-            cr_swept_box(&m, 0.0f, w->def.dt, w->scale.spec, &w->boxes[i]);
-        else {
-            cr_box *b = &w->boxes[i];
-            cr_shape_box(m.s, m.b->x, m.b->q, b);
-            b->lo_x = cr_sub(b->lo_x, w->scale.spec);
-            b->lo_y = cr_sub(b->lo_y, w->scale.spec);
-            b->hi_x = cr_add(b->hi_x, w->scale.spec);
-            b->hi_y = cr_add(b->hi_y, w->scale.spec);
+    {
+        /* (locals: the box stores could otherwise be into *w) */
+        const cr_body *bodies = w->bodies;
+        cr_box *boxes = w->boxes;
+        int *list = w->regrown, slots = w->slot_count;
+        float dt = w->def.dt, spec = w->scale.spec;
+        for (i = 0; i < slots; ++i) {
+            cr_mover m;
+            if (!(bodies[i].flags & CR_BODY_ALIVE))
+                continue;
+            m.s = &w->info[i].shape;
+            m.b = &bodies[i];
+            m.d = &w->drift[i];
+            if (bodies[i].flags & CR_BODY_AWAKE)
+                cr_swept_box(&m, 0.0f, dt, spec, &boxes[i]);
+            else {
+                cr_box *b = &boxes[i];
+                cr_shape_box(m.s, m.b->x, m.b->q, b);
+                b->lo_x = cr_sub(b->lo_x, spec);
+                b->lo_y = cr_sub(b->lo_y, spec);
+                b->hi_x = cr_add(b->hi_x, spec);
+                b->hi_y = cr_add(b->hi_y, spec);
+            }
+            list[n++] = i; /* scratch: the list of bodies in the grid */
         }
-        w->regrown[n++] = i; /* scratch: the list of bodies in the grid */
     }
     cr_broadphase_build(&w->bp, w->boxes, w->regrown, n);
     found = cr_broadphase_pairs(&w->bp, w->boxes, cr_accept_pair, w, w->pairs,
