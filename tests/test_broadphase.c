@@ -124,6 +124,57 @@ START_TEST(test_grid_finds_pairs_of_walls_larger_than_a_cell)
 }
 END_TEST
 
+/* Boxes larger than a cell, of every size from 1.5 to 12 cells, among
+ * small ones spread wider than the table (so the cells a big box covers
+ * wrap around the table's edges, on one axis or both, or cover whole
+ * rows): a big box reads only the buckets of the cells near it, and must
+ * still find every box it overlaps. Several layouts. */
+START_TEST(test_big_boxes_find_their_pairs_where_the_table_wraps)
+{
+    static bp_fixture f;
+    int n = 180, i, layout;
+    for (layout = 0; layout < 12; ++layout) {
+        unsigned seed = 1000u + 7u * (unsigned)layout;
+        fixture_init(&f, n);
+        random_boxes(&f, n, seed, 8.0f + (float)layout, 0.05f, 0.15f);
+        for (i = 0; i < 24; ++i) {
+            /* cells are about 0.4 here (twice the mean small box) */
+            float x = uniform(&seed, -12.0f, 12.0f), y = uniform(&seed, -12.0f, 12.0f);
+            float hx = uniform(&seed, 0.3f, 2.4f), hy = uniform(&seed, 0.05f, 2.4f);
+            if (i % 2) { /* as wide as high, or the other way round */
+                float t = hx;
+                hx = hy;
+                hy = t;
+            }
+            f.boxes[i].lo_x = x - hx;
+            f.boxes[i].hi_x = x + hx;
+            f.boxes[i].lo_y = y - hy;
+            f.boxes[i].hi_y = y + hy;
+            f.is_static[i] = i % 3 == 0;
+        }
+        check_against_all_pairs(&f, n);
+#if CAROM_ENABLE_GRID
+        ck_assert_int_gt(f.bp.big_count, 12);
+#endif
+    }
+}
+END_TEST
+
+/* A sparse layout (fewer pairs than slots: the pair sort's insertion
+ * path) and a dense one (its counting passes) give the same (a, b)
+ * order as the all-pairs test. */
+START_TEST(test_pair_sort_orders_few_and_many_pairs)
+{
+    static bp_fixture f;
+    int n = 300;
+    fixture_init(&f, n);
+    random_boxes(&f, n, 31u, 60.0f, 0.05f, 0.4f);
+    check_against_all_pairs(&f, n);
+    random_boxes(&f, n, 32u, 3.0f, 0.05f, 0.4f);
+    check_against_all_pairs(&f, n);
+}
+END_TEST
+
 /* Four walls 100 times the size of 20 small boxes: the walls are not
  * what a cell is sized for. The mean of all sizes is (20 * 0.1 + 4 * 10)
  * / 24 = 1.75; only the small boxes are within 4 times it, so the cell is
@@ -363,6 +414,8 @@ Suite *suite_broadphase(void)
     tcase_add_test(tc, test_grid_equals_all_pairs_for_mixed_sizes);
     tcase_add_test(tc, test_grid_finds_pairs_of_walls_larger_than_a_cell);
     tcase_add_test(tc, test_walls_do_not_set_the_cell);
+    tcase_add_test(tc, test_big_boxes_find_their_pairs_where_the_table_wraps);
+    tcase_add_test(tc, test_pair_sort_orders_few_and_many_pairs);
     tcase_add_test(tc, test_grid_handles_huge_and_negative_coordinates);
     tcase_add_test(tc, test_pair_overflow_is_counted_not_written);
     tcase_add_test(tc, test_world_pair_capacity_is_a_clean_failure);
