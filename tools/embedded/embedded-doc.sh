@@ -167,6 +167,12 @@ fn_sum() {
         NF == 4 { s = $4; sub(/\..*/, "", s); if (s in want) t += $2 }
         END { print t + 0 }'
 }
+# fn_sum, or "inline" where the functions have no symbol of their own
+# (inlined into their callers, whose bytes hold them)
+fn_sum_or_inline() {
+    n=$(fn_sum "$1" "$2")
+    if [ "$n" -eq 0 ]; then echo "inline"; else echo "$n"; fi
+}
 default_lib="$work/cfg/default/m4f.a"
 cradle_lib="$work/cfg/lean-cradle/m4f.a"
 gas_lib="$work/cfg/lean-gas/m4f.a"
@@ -332,7 +338,7 @@ in); the rows after them are proposals:
 | \`CAROM_ENABLE_GRID\` | the broadphase grid (every pair of boxes is tested instead) | up to 64 bodies | - | - | - |
 | \`CAROM_ENABLE_BODY_EDITS\` | removing bodies and the \`carom_body_set_*\` / \`carom_body_apply_*\` calls ($(code_list "$edits"), stubs left) | always, unless the program calls them | $(fn_sum "$default_lib" "$edits") | - | - |
 | \`CAROM_ENABLE_ANGLES\` | the angle helpers ($(code_list "$trig")), and with rotation off carom's sine and cosine (\`cr_rot_from_angle\`) | rotation off and every body at angle 0 | $(fn_sum "$default_lib" "$trig cr_rot_from_angle") | - | - |
-| (circles only) the two-point block solve | \`cr_lcp2\` and its callers' block branches: compiled only when a contact can have two points (polygons) | with \`CAROM_ENABLE_POLYGONS\` | $(fn_sum "$default_lib" "$block") | - | - |
+| (circles only) the two-point block solve | \`cr_lcp2\` and its callers' block branches: compiled only when a contact can have two points (polygons) | with \`CAROM_ENABLE_POLYGONS\` | $(fn_sum_or_inline "$default_lib" "$block") | - | - |
 | (not possible) the quartic time of impact without gravity and forces | $(code_list "$quartic") | never: a solved contact's impulse is spread over its substep as an acceleration (\`cr_solver_set_drifts\`), so bodies touching others accelerate even then | $(fn_sum "$default_lib" "$quartic") | $(fn_sum "$cradle_lib" "$quartic") | $(fn_sum "$gas_lib" "$quartic") |
 | (a fix) polygon-polygon TOI under \`CAROM_ENABLE_POLYGON_POLYGON\` | \`cr_toi_vertices_edges\` | with POLYGON_POLYGON | $(fn_sum "$default_lib" "$toi_pp") | $(fn_sum "$cradle_lib" "$toi_pp") | $(fn_sum "$gas_lib" "$toi_pp") |
 | (a fix) waking under \`CAROM_ENABLE_SLEEP\` | \`cr_island_wake_touched\`, \`cr_island_wake\` | with SLEEP | $(fn_sum "$default_lib" "$wake") | $(fn_sum "$cradle_lib" "$wake") | $(fn_sum "$gas_lib" "$wake") |
