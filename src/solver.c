@@ -328,7 +328,14 @@ CR_INLINE float cr_rows_vn(const cr_rows_ctx *x, const cr_contact *c, int k)
  * impulses acc[] (>= 0) and targets vn + bias[] >= 0: both points as one
  * 2x2 problem when the manifold allows, else one after the other.
  */
-CR_INLINE void cr_normal_rows(cr_rows_ctx *x, const cr_contact *c, float *acc,
+#if CR_TWO_POINTS
+#define CR_ROWS_INLINE CR_INLINE
+#else
+/* (one-point builds: inlined into the sweeps' loops over one-element
+ * arrays, gcc cannot see that count <= 1 and warns of accesses past them) */
+#define CR_ROWS_INLINE static
+#endif
+CR_ROWS_INLINE void cr_normal_rows(cr_rows_ctx *x, const cr_contact *c, float *acc,
                            const float *bias, const float *vn)
 {
     int k;
