@@ -84,13 +84,7 @@ carom_status cr_body_accel_all(const carom_world_def *def, int id,
             f = cr_vadd(f, uf);
             tq = cr_add(tq, ut);
         }
-        *a = cr_vadd(def->gravity, cr_vscale(b->inv_m, f));
-#if CAROM_ENABLE_ROTATION
-        *alpha = cr_mul(b->inv_I, tq);
-#else
-        (void)tq;
-        *alpha = 0.0f;
-#endif
+        cr_accel_of(def, b, f, tq, a, alpha);
     }
 #else
     (void)id;

@@ -137,18 +137,27 @@ carom_status cr_body_accel_all(const carom_world_def *def, int id,
                                const cr_body *b, const cr_body_info *info,
                                cr_v2 *a, float *alpha);
 
+/* Gravity plus force f over the mass, and torque tq over the inertia, of
+ * dynamic body b. */
+CR_INLINE void cr_accel_of(const carom_world_def *def, const cr_body *b, cr_v2 f, float tq,
+                           cr_v2 *a, float *alpha)
+{
+    *a = cr_vadd(def->gravity, cr_vscale(b->inv_m, f));
+#if CAROM_ENABLE_ROTATION
+    *alpha = cr_mul(b->inv_I, tq);
+#else
+    (void)tq;
+    *alpha = 0.0f;
+#endif
+}
+
 CR_INLINE carom_status cr_body_accel(const carom_world_def *def, int id,
                                      const cr_body *b, const cr_body_info *info,
                                      cr_v2 *a, float *alpha)
 {
 #if CAROM_ENABLE_FORCES
     if (b->type == CAROM_BODY_DYNAMIC && !def->force_fn && !(b->flags & CR_BODY_ONCE)) {
-        *a = cr_vadd(def->gravity, cr_vscale(b->inv_m, info->force));
-#if CAROM_ENABLE_ROTATION
-        *alpha = cr_mul(b->inv_I, info->torque);
-#else
-        *alpha = 0.0f;
-#endif
+        cr_accel_of(def, b, info->force, info->torque, a, alpha);
         return CAROM_OK;
     }
 #endif

@@ -79,6 +79,18 @@ static cr_v2 cr_speed_at(const cr_mover *m, float t)
     return cr_vmadd(m->b->v, cr_sub(t, m->d->t), m->d->a);
 }
 
+/* Widen [lo, hi] to the turning point of x + u s + a s^2 / 2 (a != 0)
+ * if it lies within s in (0, s1). */
+CR_INLINE void cr_sweep_turn(float x, float u, float a, float s1, float *lo, float *hi)
+{
+    float s = cr_neg(cr_div(u, a));
+    if (cr_gt(s, 0.0f) && cr_lt(s, s1)) {
+        float e = cr_add(x, cr_mul(cr_mul(0.5f, s), u));
+        *lo = cr_min(*lo, e);
+        *hi = cr_max(*hi, e);
+    }
+}
+
 /* One axis of a swept box from the drift's start: x + u s + a s^2 / 2
  * over s in [0, s1] (c = s1^2 / 2), as cr_position_at and cr_speed_at
  * give it with an acceleration (acc), without the terms that add zero
@@ -87,22 +99,12 @@ CR_INLINE void cr_sweep_axis(float x, float u, float a, int acc, float s1, float
                              float *lo, float *hi)
 {
     float x1 = cr_add(x, cr_mul(s1, u));
-    if (!acc) {
-        *lo = cr_min(x, x1);
-        *hi = cr_max(x, x1);
-        return;
-    }
-    x1 = cr_add(x1, cr_mul(c, a));
+    if (acc)
+        x1 = cr_add(x1, cr_mul(c, a));
     *lo = cr_min(x, x1);
     *hi = cr_max(x, x1);
-    {
-        float s = cr_neg(cr_div(u, a));
-        if (cr_gt(s, 0.0f) && cr_lt(s, s1)) {
-            float e = cr_add(x, cr_mul(cr_mul(0.5f, s), u));
-            *lo = cr_min(*lo, e);
-            *hi = cr_max(*hi, e);
-        }
-    }
+    if (acc)
+        cr_sweep_turn(x, u, a, s1, lo, hi);
 }
 
 void cr_swept_box(const cr_mover *m, float t0, float t1, float margin,
@@ -142,15 +144,8 @@ void cr_swept_box(const cr_mover *m, float t0, float t1, float margin,
         lo[1] = cr_min(x0.y, x1.y); hi[1] = cr_max(x0.y, x1.y);
         for (k = 0; k < 2; ++k) {
             float uk = k ? u.y : u.x, ak = k ? m->d->a.y : m->d->a.x;
-            float xk = k ? x0.y : x0.x;
-            if (!cr_eq(ak, 0.0f)) {
-                float s = cr_neg(cr_div(uk, ak));
-                if (cr_gt(s, 0.0f) && cr_lt(s, s1)) {
-                    float e = cr_add(xk, cr_mul(cr_mul(0.5f, s), uk));
-                    lo[k] = cr_min(lo[k], e);
-                    hi[k] = cr_max(hi[k], e);
-                }
-            }
+            if (!cr_eq(ak, 0.0f))
+                cr_sweep_turn(k ? x0.y : x0.x, uk, ak, s1, &lo[k], &hi[k]);
         }
     }
     if (CR_KIND_CIRCLE(m->s->kind) || cr_rotates(m)) {
