@@ -81,9 +81,9 @@ static int cr_cell_of(float v)
     int i;
     v = cr_clamp(v, cr_neg(CR_CELL_LIMIT), CR_CELL_LIMIT);
     i = (int)v;
-    if (cr_lt(v, (float)i))
-        --i;
-    return i;
+    /* (truncation rounds a negative v up: one less; without a branch,
+     * which the signs of a layout around 0 mispredict half the time) */
+    return i - cr_lt(v, (float)i);
 }
 
 /* The bucket of cell (cx, cy): the table is a 2^xbits by 2^ybits patch of
@@ -313,8 +313,8 @@ long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
             end = start[k + 2];
             for (j = i + 1; j < end; ++j) {
                 const cr_proxy *q = &px[j];
-                if (q->cy == cy && (q->cx == cx || q->cx == cx + 1) &&
-                    cr_boxes_overlap(&p->box, &q->box))
+                if ((q->cy == cy) & ((q->cx == cx) | (q->cx == cx + 1)) &
+                    cr_boxes_overlap_flat(&p->box, &q->box))
                     cr_emit(&o, p->body, q->body);
             }
         } else {
@@ -330,8 +330,8 @@ long cr_broadphase_pairs(const cr_broadphase *bp, const cr_box *boxes,
             end = start[k1 + 2];
             for (j = start[k1 - 1]; j < end; ++j) {
                 const cr_proxy *q = &px[j];
-                if (q->cy == cy + 1 && q->cx >= cx - 1 && q->cx <= cx + 1 &&
-                    cr_boxes_overlap(&p->box, &q->box))
+                if ((q->cy == cy + 1) & (q->cx >= cx - 1) & (q->cx <= cx + 1) &
+                    cr_boxes_overlap_flat(&p->box, &q->box))
                     cr_emit(&o, p->body, q->body);
             }
         } else {
