@@ -42,7 +42,7 @@ static const char usage[] =
     "  --scenes LIST      comma-separated kinds (default gas,pile)\n"
     "  --sizes LIST       body counts (default 100,1000,10000,100000)\n"
     "  --engines LIST     default: every engine built (first-impact on the gas only)\n"
-    "  --reps R           runs per measurement (default 5; 3 from 10^4 bodies)\n"
+    "  --reps R           runs per measurement (default 9; 3 from 10^4 bodies)\n"
     "  --steps S          timed steps per run (default: gas 120, pile 60;\n"
     "                     10 from 10^5 bodies)\n"
     "  --warmup W         untimed steps first (default 1)\n"
@@ -342,7 +342,7 @@ static void print_fail(const char *what, const bench_scene *s, const bench_engin
 static void time_size(const suite *su, const bench_scene *s)
 {
     const long steps = su->steps > 0 ? su->steps : default_steps(s->kind, s->n);
-    const long reps = su->reps > 0 ? su->reps : (s->n >= 10000 ? 3 : 5);
+    const long reps = su->reps > 0 ? su->reps : (s->n >= 10000 ? 3 : 9);
     bench_config cfg[MAX_LIST];
     double means[MAX_LIST][64], walls[MAX_LIST][64];
     int got[MAX_LIST], stopped[MAX_LIST], dead[MAX_LIST];
