@@ -844,6 +844,202 @@ START_TEST(test_new_calls_refuse_null_and_bad_ids)
 }
 END_TEST
 
+/* Everything a world's bodies hold that the program can read: state bits,
+ * mass, awake flag, user data. */
+static int same_bodies(const carom_world *a, const carom_world *b)
+{
+    int i, n = carom_world_body_count(a);
+    if (n != carom_world_body_count(b))
+        return 0;
+    for (i = 0; i < n; ++i) {
+        carom_body_state sa, sb;
+        float ma, mb, ia, ib;
+        ck_assert_int_eq(carom_body_get_state(a, i, &sa), CAROM_OK);
+        ck_assert_int_eq(carom_body_get_state(b, i, &sb), CAROM_OK);
+        ck_assert_int_eq(carom_body_get_mass(a, i, &ma, &ia), CAROM_OK);
+        ck_assert_int_eq(carom_body_get_mass(b, i, &mb, &ib), CAROM_OK);
+        if (memcmp(&sa, &sb, sizeof sa) != 0 || ma != mb || ia != ib ||
+            carom_body_is_awake(a, i) != carom_body_is_awake(b, i) ||
+            carom_body_get_user_data(a, i) != carom_body_get_user_data(b, i))
+            return 0;
+    }
+    return 1;
+}
+
+/* A box resting on the ground, a kinematic ball gliding past, a dynamic
+ * ball in flight: bodies 0 ground, 1 box, 2 kinematic, 3 ball. */
+static tw refusal_scene(void)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    wd.max_bodies = 4;
+    t = tw_make(&wd);
+    add_ground(&t);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    bd.position.y = 0.5f;
+    tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    bd.type = CAROM_BODY_KINEMATIC;
+    bd.position.x = -5.0f;
+    bd.position.y = 3.0f;
+    bd.velocity.x = 1.0f;
+    bd.angular_velocity = 0.5f;
+    tw_add(&t, &bd);
+    add_ball(&t, 0.25f, 3.0f, 4.0f, -1.0f, 2.0f);
+    tw_steps(&t, 10);
+    return t;
+}
+
+/*
+ * Every body call given a bad argument returns its named status and
+ * changes nothing: the world that took a hundred refused calls steps on
+ * bit for bit like its twin that took none (bad input never leaves a
+ * silently wrong state).
+ */
+START_TEST(test_refused_calls_change_nothing)
+{
+    tw t = refusal_scene(), twin = refusal_scene();
+    carom_world *w = t.w;
+    const float nan = (float)NAN, inf = (float)INFINITY, huge = 1.0e30f;
+    const carom_vec2 z = {0.0f, 0.0f}, vnan = {nan, 0.0f}, vinf = {0.0f, inf};
+    const carom_vec2 vhuge = {huge, 0.0f}, vmax = {3.0e38f, 3.0e38f};
+    const carom_rot r0 = carom_rot_from_angle(0.0f), rnan = {nan, 0.0f};
+    const int ground = 0, box = 1, kin = 2, ball = 3, bad = 77, stale = 1 << 20;
+    carom_body_type ty;
+    carom_body_state st;
+    carom_vec2 v;
+    float f;
+    int i;
+
+    /* no world */
+    ck_assert_int_eq(carom_body_set_velocity(NULL, box, z), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_angular_velocity(NULL, box, 0.0f), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_transform(NULL, box, z, r0), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_apply_impulse(NULL, box, z, z), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_apply_angular_impulse(NULL, box, 0.0f), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_apply_force(NULL, box, z, z), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_apply_torque(NULL, box, 0.0f), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_force(NULL, box, z, 0.0f), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_restitution(NULL, box, 0.5f), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_friction(NULL, box, 0.5f), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_user_data(NULL, box, &t), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_set_filter(NULL, box, 1u, 1u, 0), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_get_type(NULL, box, &ty), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_get_velocity(NULL, box, &v, &f), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_get_state(NULL, box, &st), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_body_get_mass(NULL, box, &f, &f), CAROM_ERR_NULL);
+    /* a slot past max_bodies; slot 0 under a generation it never had */
+    ck_assert_int_eq(carom_body_get_mass(w, bad, &f, &f), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_get_velocity(w, bad, &v, &f), CAROM_ERR_BAD_BODY_ID);
+    ck_assert_int_eq(carom_body_get_mass(w, stale, &f, &f), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_body_set_velocity(w, stale, z), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_body_apply_impulse(w, stale, z, z), CAROM_ERR_STALE_ID);
+    ck_assert_int_eq(carom_body_set_force(w, stale, z, 0.0f), CAROM_ERR_STALE_ID);
+    ck_assert_ptr_null(carom_body_get_user_data(NULL, box));
+    ck_assert(!carom_body_is_awake(NULL, box));
+
+    /* a static body cannot be moved or pushed; a kinematic body cannot be
+     * pushed (it moves only as the program sets it) */
+    ck_assert_int_eq(carom_body_set_velocity(w, ground, z), CAROM_ERR_BAD_BODY_TYPE);
+    ck_assert_int_eq(carom_body_set_angular_velocity(w, ground, 1.0f), CAROM_ERR_BAD_BODY_TYPE);
+    for (i = 0; i < 2; ++i) {
+        int id = i == 0 ? ground : kin;
+        ck_assert_int_eq(carom_body_apply_impulse(w, id, z, z), CAROM_ERR_BAD_BODY_TYPE);
+        ck_assert_int_eq(carom_body_apply_angular_impulse(w, id, 1.0f), CAROM_ERR_BAD_BODY_TYPE);
+        ck_assert_int_eq(carom_body_apply_force(w, id, z, z), CAROM_ERR_BAD_BODY_TYPE);
+        ck_assert_int_eq(carom_body_apply_torque(w, id, 1.0f), CAROM_ERR_BAD_BODY_TYPE);
+    }
+
+    /* NaN and infinity, in every argument that is a number */
+    ck_assert_int_eq(carom_body_set_velocity(w, box, vnan), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_set_velocity(w, kin, vinf), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_set_angular_velocity(w, box, nan), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_set_transform(w, box, vnan, r0), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_set_transform(w, box, z, rnan), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_apply_impulse(w, ball, vnan, z), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_apply_impulse(w, ball, z, vinf), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_apply_angular_impulse(w, ball, inf), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_apply_force(w, ball, vinf, z), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_apply_force(w, ball, z, vnan), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_apply_torque(w, ball, nan), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_set_force(w, ball, vnan, 0.0f), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_set_force(w, ball, z, inf), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_set_restitution(w, ball, nan), CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_body_set_friction(w, ball, nan), CAROM_ERR_NOT_FINITE);
+    /* an impulse whose velocity change overflows float */
+    ck_assert_int_eq(carom_body_apply_impulse(w, ball, vmax, z), CAROM_ERR_NOT_FINITE);
+
+    /* finite, but past the limits of carom_config.h or of the physics */
+    ck_assert_int_eq(carom_body_set_velocity(w, box, vhuge), CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_set_angular_velocity(w, box, huge), CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_set_transform(w, box, vhuge, r0), CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_apply_impulse(w, ball, vhuge, z), CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_apply_angular_impulse(w, ball, huge), CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_apply_force(w, ball, vhuge, tw_state(&t, ball).center),
+                     CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_apply_torque(w, ball, huge), CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_set_force(w, ball, vhuge, 0.0f), CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_set_force(w, ball, z, huge), CAROM_ERR_OUT_OF_RANGE);
+    ck_assert_int_eq(carom_body_set_restitution(w, ball, 1.5f), CAROM_ERR_BAD_RESTITUTION);
+    ck_assert_int_eq(carom_body_set_restitution(w, ball, -0.1f), CAROM_ERR_BAD_RESTITUTION);
+    ck_assert_int_eq(carom_body_set_friction(w, ball, -1.0f), CAROM_ERR_BAD_FRICTION);
+
+    /* nothing changed: the same bodies now and after a second of motion */
+    ck_assert(same_bodies(t.w, twin.w));
+    tw_steps(&t, 60);
+    tw_steps(&twin, 60);
+    ck_assert(same_bodies(t.w, twin.w));
+    tw_free(&t);
+    tw_free(&twin);
+}
+END_TEST
+
+/* Removing a sleeping body wakes what slept with it: the upper box of a
+ * sleeping stack of two, its support removed, falls freely from rest
+ * (y = y0 - g t^2 / 2). Removing a sensor ends its overlaps without an
+ * event about the removed body, and the other body is not disturbed. */
+START_TEST(test_removing_a_sleeping_body_or_a_sensor)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int boxes[2], sensor, i, k, n;
+    wd.max_bodies = 4;
+    t = tw_make(&wd);
+    add_ground(&t);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    for (i = 0; i < 2; ++i) {
+        bd.position.y = 0.5f + (float)i;
+        boxes[i] = tw_add(&t, &bd);
+    }
+    bd = carom_default_body_def();
+    bd.type = CAROM_BODY_STATIC;
+    bd.is_sensor = 1;
+    carom_body_def_set_box(&bd, 1.0f, 1.0f);
+    bd.position.y = 1.0f;
+    sensor = tw_add(&t, &bd);
+    tw_steps(&t, 120);
+    ck_assert(!carom_body_is_awake(t.w, boxes[0]) && !carom_body_is_awake(t.w, boxes[1]));
+    ck_assert_int_eq(carom_world_remove_body(t.w, boxes[0]), CAROM_OK);
+    ck_assert(carom_body_is_awake(t.w, boxes[1]));
+    ck_assert_int_eq(carom_world_remove_body(t.w, sensor), CAROM_OK);
+    ck_assert(!carom_body_is_valid(t.w, sensor));
+    for (k = 1; k <= 15; ++k) {
+        const carom_touch_event *e;
+        double tt = k / 60.0;
+        tw_steps(&t, 1);
+        /* from y = 1.5 to the ground top (y = 0.5 at the centre) takes
+         * sqrt(2 / 10) = 0.447 s: 15 steps are 0.25 s, all in flight */
+        ck_assert_close(tw_state(&t, boxes[1]).position.y, 1.5 - 5.0 * tt * tt, 2e-3);
+        e = carom_world_touch_events(t.w, &n);
+        for (i = 0; i < n; ++i)
+            ck_assert(e[i].body_a != sensor && e[i].body_b != sensor);
+    }
+    tw_free(&t);
+}
+END_TEST
+
 /* Removing the body in the last slot in use, then adding one: the new body
  * takes the slot with a new generation, and the old id stays stale (found
  * by the API fuzzer: the freed end slot restarted its generation). */
@@ -915,6 +1111,7 @@ Suite *suite_api(void)
     tcase_add_test(tb, test_set_transform_teleports_and_forgets_contacts);
     tcase_add_test(tb, test_material_and_user_data_setters);
     tcase_add_test(tb, test_new_calls_refuse_null_and_bad_ids);
+    tcase_add_test(tb, test_refused_calls_change_nothing);
     tcase_add_test(tk, test_kinematic_paddle_pushes_and_is_not_pushed);
     tcase_add_test(tk, test_kinematic_platform_lifts_a_box);
     tcase_add_test(tr, test_rotation_pairs_too_short_to_normalize_are_refused);
@@ -922,6 +1119,7 @@ Suite *suite_api(void)
     tcase_add_test(tr, test_removal_frees_the_slot_and_refuses_stale_ids);
     tcase_add_test(tr, test_removing_a_support_wakes_and_drops_what_it_held);
     tcase_add_test(tr, test_removal_mid_simulation_leaves_nothing_dangling);
+    tcase_add_test(tr, test_removing_a_sleeping_body_or_a_sensor);
     tcase_add_test(tf, test_collision_filter_bits_and_groups);
     tcase_add_test(tf, test_filter_set_after_creation);
     tcase_add_test(te, test_sensor_reports_overlap_without_impulse);
