@@ -434,10 +434,96 @@ START_TEST(test_step_scale_follows_added_and_removed_bodies)
 }
 END_TEST
 
+/* The tolerances a world reports follow the formulas of carom_config.h:
+ * the length unit is the mean equivalent radius sqrt(area / pi) of the
+ * dynamic bodies (static ones do not count), the slop and the sleep speed
+ * are multiples of it, the rest speed of |g| dt; a value set in the
+ * definition is reported as set. */
+START_TEST(test_tolerances_follow_the_bodies_and_the_definition)
+{
+    carom_world_def d = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_tolerances tol;
+    const double box_r = sqrt(2.0 * 0.5 / 3.14159265358979), unit = 0.5 * (0.5 + box_r);
+    tw t;
+    d.gravity.x = 3.0f;
+    d.gravity.y = -4.0f;
+    d.dt = 0.01f;
+    d.max_bodies = 3;
+    t = tw_make(&d);
+    ck_assert_int_eq(carom_world_get_tolerances(NULL, &tol), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_world_get_tolerances(t.w, NULL), CAROM_ERR_NULL);
+    bd.radius = 0.5f;
+    tw_add(&t, &bd);
+    carom_body_def_set_box(&bd, 1.0f, 0.25f); /* area 1 x 0.5 */
+    bd.position.x = 3.0f;
+    tw_add(&t, &bd);
+    carom_body_def_set_box(&bd, 50.0f, 1.0f);
+    bd.type = CAROM_BODY_STATIC;
+    bd.position.y = -5.0f;
+    tw_add(&t, &bd);
+    ck_assert_int_eq(carom_world_get_tolerances(t.w, &tol), CAROM_OK);
+    ck_assert_close(tol.length_unit, unit, 1e-6);
+    ck_assert_close(tol.linear_slop, CAROM_SLOP_PER_LENGTH * unit, 1e-9);
+    ck_assert_close(tol.sleep_speed, CAROM_SLEEP_SPEED_PER_LENGTH * unit, 1e-7);
+    ck_assert_close(tol.rest_speed, CAROM_REST_SPEED_PER_ACCEL_DT * 5.0 * 0.01, 1e-7);
+    tw_free(&t);
+
+    d.length_unit = 2.0f;
+    d.linear_slop = 0.004f;
+    d.rest_speed = 0.25f;
+    t = tw_make(&d);
+    ck_assert_int_eq(carom_world_get_tolerances(t.w, &tol), CAROM_OK);
+    ck_assert_float_eq(tol.length_unit, 2.0f);
+    ck_assert_float_eq(tol.linear_slop, 0.004f);
+    ck_assert_float_eq(tol.rest_speed, 0.25f);
+    ck_assert_close(tol.sleep_speed, CAROM_SLEEP_SPEED_PER_LENGTH * 2.0, 1e-7);
+    tw_free(&t);
+}
+END_TEST
+
+/* A world's method can be changed between steps: a bad method is refused
+ * and leaves it as it was; a world made discrete and switched to events
+ * takes the next impact at its exact instant (two balls 0.1 m apart
+ * closing at 2 m/s meet at t = 0.05 s). */
+START_TEST(test_method_changes_between_steps)
+{
+    tw t = tw_pair(CAROM_METHOD_DISCRETE, 1.0f / 60.0f, 0.0f, 0.5f, 1.0f, 0.0f, -0.55f, 1.0f,
+                   0.0f, 0.55f, -1.0f);
+    const carom_event *e;
+    int n, k, found = 0;
+    ck_assert_int_eq(carom_world_get_method(t.w), CAROM_METHOD_DISCRETE);
+    ck_assert_int_eq(carom_world_get_method(NULL), CAROM_METHOD_DISCRETE);
+    ck_assert_int_eq(carom_world_set_method(NULL, CAROM_METHOD_EVENTS), CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_world_set_method(t.w, CAROM_METHOD_COUNT), CAROM_ERR_BAD_METHOD);
+    ck_assert_int_eq(carom_world_set_method(t.w, (carom_method)-1), CAROM_ERR_BAD_METHOD);
+    ck_assert_int_eq(carom_world_get_method(t.w), CAROM_METHOD_DISCRETE);
+    ck_assert_int_eq(carom_world_set_method(t.w, CAROM_METHOD_EVENTS), CAROM_OK);
+    ck_assert_int_eq(carom_world_get_method(t.w), CAROM_METHOD_EVENTS);
+    for (k = 0; k < 6; ++k) {
+        tw_steps(&t, 1);
+        e = carom_world_events(t.w, &n);
+        if (n > 0) {
+            ck_assert_int_eq(n, 1);
+            ck_assert_close(e[0].t, 0.05, 1e-6);
+            ck_assert_close(e[0].approach_speed, 2.0, 1e-5);
+            found = 1;
+        }
+    }
+    ck_assert(found);
+    /* equal masses, e = 1: the velocities are exchanged */
+    ck_assert_close(tw_state(&t, 0).velocity.x, -1.0, 1e-5);
+    ck_assert_close(tw_state(&t, 1).velocity.x, 1.0, 1e-5);
+    tw_free(&t);
+}
+END_TEST
+
 Suite *suite_world(void)
 {
     Suite *s = suite_create("world");
     TCase *tc = tcase_create("api");
+    tcase_add_test(tc, test_tolerances_follow_the_bodies_and_the_definition);
+    tcase_add_test(tc, test_method_changes_between_steps);
     tcase_add_test(tc, test_default_world_def_matches_config_header);
     tcase_add_test(tc, test_step_scale_follows_added_and_removed_bodies);
     tcase_add_test(tc, test_bad_world_defs_get_their_status);
