@@ -699,6 +699,100 @@ START_TEST(test_raycasts_are_exact_and_ordered)
 END_TEST
 
 
+static int stop_at_second(void *ctx, int body)
+{
+    int *calls = (int *)ctx;
+    (void)body;
+    return ++*calls < 2;
+}
+
+/*
+ * Five circles of r = 0.5 at x = 8, 6, 4, 2, 0 (added far to near, so
+ * bodies are met out of ray order) and a unit box at x = 12, a sixth
+ * circle at x = 16 removed: before the first step (every slot scanned,
+ * the removed one skipped) and after it (the grid). A query stops at the
+ * callback's 0; rays report every hit nearest first whatever order they
+ * are met in, and miss what they should: a zero-length ray, a segment
+ * that ends short or points away, a line that passes a circle, rays past
+ * a box's corner or over it, a ray from inside.
+ */
+START_TEST(test_queries_stop_and_rays_miss_where_they_should)
+{
+    carom_world_def wd = zero_g(7);
+    carom_body_def bd = carom_default_body_def();
+    tw t = tw_make(&wd);
+    carom_ray_hit h, all[3];
+    int i, pass, found, n, calls, gone;
+    for (i = 4; i >= 0; --i)
+        add_ball(&t, 0.5f, 2.0f * (float)i, 0.0f, 0.0f, 0.0f);
+    carom_body_def_set_box(&bd, 0.5f, 0.5f);
+    bd.position.x = 12.0f;
+    tw_add(&t, &bd);
+    gone = add_ball(&t, 0.5f, 16.0f, 0.0f, 0.0f, 0.0f);
+    ck_assert_int_eq(carom_world_remove_body(t.w, gone), CAROM_OK);
+    for (pass = 0; pass < 2; ++pass) {
+        calls = 0;
+        ck_assert_int_eq(carom_world_query_box(t.w, (carom_vec2){-1.0f, -1.0f},
+                                               (carom_vec2){20.0f, 1.0f}, stop_at_second, &calls),
+                         CAROM_OK);
+        ck_assert_int_eq(calls, 2);
+        ck_assert_int_eq(carom_world_raycast_all(t.w, (carom_vec2){-5.0f, 0.0f},
+                                                 (carom_vec2){20.0f, 0.0f}, all, 3, &n),
+                         CAROM_OK);
+        ck_assert_int_eq(n, 6);
+        for (i = 0; i < 3; ++i) {
+            ck_assert_int_eq(all[i].body, 4 - i); /* the circle at x = 2 i */
+            ck_assert_close(all[i].fraction, (4.5 + 2.0 * i) / 25.0, 1e-6);
+        }
+        ck_assert_int_eq(carom_world_raycast_all(t.w, (carom_vec2){-5.0f, 0.0f},
+                                                 (carom_vec2){20.0f, 0.0f}, NULL, 0, &n),
+                         CAROM_OK);
+        ck_assert_int_eq(n, 6);
+        {
+            /* each within the bounding box of the circle at 0, or of the
+             * box, so that the shape itself is tested */
+            static const float rays[9][4] = {
+                {0.45f, 0.45f, 0.45f, 0.45f}, /* no length, outside the circle */
+                {-2.0f, -2.0f, -0.45f, -0.45f}, /* ends short of the circle */
+                {-0.45f, 0.45f, -0.6f, 0.6f}, /* points away from it */
+                {0.3f, 0.6f, 0.6f, 0.3f},     /* its line passes the circle at
+                                                 0.9 / sqrt 2 > r */
+                {-5.0f, 0.7f, 20.0f, 0.7f},   /* above everything */
+                {11.0f, 0.2f, 12.0f, 1.2f},   /* past the box's corner */
+                {12.0f, 0.0f, 12.2f, 0.0f},   /* from inside the box */
+                {0.1f, 0.0f, 1.4f, 0.0f},     /* from inside a circle */
+                {11.0f, 0.5f, 13.0f, 0.7f},   /* over the box, rising */
+            };
+            for (i = 0; i < 9; ++i) {
+                ck_assert_int_eq(carom_world_raycast(t.w, (carom_vec2){rays[i][0], rays[i][1]},
+                                                     (carom_vec2){rays[i][2], rays[i][3]}, &h,
+                                                     &found),
+                                 CAROM_OK);
+                ck_assert_msg(found == 0, "ray %d hit body %d", i, h.body);
+            }
+        }
+        tw_steps(&t, 1);
+    }
+    ck_assert_int_eq(carom_world_query_box(NULL, (carom_vec2){0, 0}, (carom_vec2){1, 1},
+                                           stop_at_second, &calls),
+                     CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_world_query_box(t.w, (carom_vec2){0, 0}, (carom_vec2){1, 1}, NULL, NULL),
+                     CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_world_query_box(t.w, (carom_vec2){NAN, 0}, (carom_vec2){1, 1},
+                                           stop_at_second, &calls),
+                     CAROM_ERR_NOT_FINITE);
+    ck_assert_int_eq(carom_world_raycast(NULL, (carom_vec2){0, 0}, (carom_vec2){1, 0}, &h, &found),
+                     CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_world_raycast(t.w, (carom_vec2){0, 0}, (carom_vec2){1, 0}, NULL, &found),
+                     CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_world_raycast_all(t.w, (carom_vec2){0, 0}, (carom_vec2){1, 0}, NULL, 2, &n),
+                     CAROM_ERR_NULL);
+    ck_assert_int_eq(carom_world_raycast_all(t.w, (carom_vec2){0, 0}, (carom_vec2){1, 0}, all, 3, NULL),
+                     CAROM_ERR_NULL);
+    tw_free(&t);
+}
+END_TEST
+
 /* A ray a thousand times longer than the circle it hits: the hit from the
  * closest approach, without the cancellation of b^2 - a c (found by the
  * API fuzzer: |normal| was 1.017 for a 1 km ray and a 0.5 m circle). The
@@ -1127,6 +1221,7 @@ Suite *suite_api(void)
     tcase_add_test(te, test_teleport_and_filter_keep_a_touch_that_holds);
     tcase_add_test(tq, test_box_and_point_queries_are_exact);
     tcase_add_test(tq, test_raycasts_are_exact_and_ordered);
+    tcase_add_test(tq, test_queries_stop_and_rays_miss_where_they_should);
     tcase_add_test(tq, test_long_ray_hits_a_circle_exactly);
     tcase_add_test(tq, test_ray_beyond_the_length_limit_is_refused);
     tcase_add_test(tq, test_queries_and_sensors_see_a_body_pushed_out_of_its_box);
