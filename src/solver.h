@@ -44,6 +44,10 @@ void cr_solver_mark_shocks(carom_world *w);
  * supporting body below held fixed (shock propagation). */
 void cr_solver_shock(carom_world *w, const cr_substep *s);
 
+/* After the warm start: take back, down the support order, the impulses
+ * that would lift a body off its support (an impact's, carried over). */
+void cr_solver_unload(carom_world *w);
+
 /* Cold start (bodies were added): estimate the support impulses of the
  * contacts that have no warm start from the weights they carry. */
 void cr_solver_prime(carom_world *w, const cr_substep *s);
