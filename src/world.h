@@ -40,6 +40,8 @@ typedef struct cr_solver_body {
     unsigned char active; /* has a contact solved this substep */
     unsigned char held;   /* events: an impact's hold changed its drift
                              this substep */
+    unsigned char pushed; /* the warm start's unloading reduced a contact
+                             of what rests on it (cr_solver_unload) */
 } cr_solver_body;
 
 /* An entry of the impact queue: a pair's next impact as computed when the
