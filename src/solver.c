@@ -1305,9 +1305,7 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
 void cr_solver_unload(carom_world *w)
 {
     int i, k, j;
-    cr_v2 up;
-    if (!cr_up(w, &up))
-        return;
+    /* (no support order without gravity: nothing to walk) */
     for (i = 0; i < w->support_count; ++i)
         w->sbody[w->support[i]].pushed = 0;
     for (i = w->support_count - 1; i >= 0; --i) {
