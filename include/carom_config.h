@@ -101,7 +101,8 @@
 #endif
 
 #ifndef CAROM_ENABLE_STACKING
-#define CAROM_ENABLE_STACKING 1 /**< support order, priming of new stacks and
+#define CAROM_ENABLE_STACKING 1 /**< support order, priming of new stacks,
+                                     the warm start's unloading and
                                      shock propagation: what keeps tall
                                      stacks and heavy-on-light piles standing
                                      under gravity; off: smaller code for

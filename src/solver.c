@@ -1306,6 +1306,8 @@ void cr_solver_unload(carom_world *w)
 {
     int i, k, j;
     /* (no support order without gravity: nothing to walk) */
+    if (!CAROM_ENABLE_STACKING)
+        return;
     for (i = 0; i < w->support_count; ++i)
         w->sbody[w->support[i]].pushed = 0;
     for (i = w->support_count - 1; i >= 0; --i) {

@@ -176,7 +176,7 @@ fn_sum_or_inline() {
 default_lib="$work/cfg/default/m4f.a"
 cradle_lib="$work/cfg/lean-cradle/m4f.a"
 gas_lib="$work/cfg/lean-gas/m4f.a"
-stacking="cr_solver_levels cr_solver_prime cr_solver_shock cr_one_sided cr_push_up cr_support_of cr_correct_shock"
+stacking="cr_solver_levels cr_solver_prime cr_solver_unload cr_solver_shock cr_one_sided cr_push_up cr_support_of cr_correct_shock"
 quartic="cr_first_root4 cr_poly4"
 toi_pp="cr_toi_vertices_edges"
 wake="cr_island_wake_touched cr_island_wake"
@@ -333,7 +333,7 @@ in); the rows after them are proposals:
 
 | switch | what it removes | when \`carom lean\` turns it off | default | cradle | gas |
 | --- | --- | --- | --- | --- | --- |
-| \`CAROM_ENABLE_STACKING\` | support order, cold-start priming and shock propagation ($(code_list "$stacking")) | gravity 0 (they do nothing then) | $(fn_sum "$default_lib" "$stacking") | - | - |
+| \`CAROM_ENABLE_STACKING\` | support order, cold-start priming, the warm start's unloading and shock propagation ($(code_list "$stacking")) | gravity 0 (they do nothing then) | $(fn_sum "$default_lib" "$stacking") | - | - |
 | \`CAROM_ENABLE_STATUS_NAMES\` | the text of \`carom_status_string\` (one generic string left) | always, unless the program prints statuses | - | - | - |
 | \`CAROM_ENABLE_GRID\` | the broadphase grid (every pair of boxes is tested instead) | up to 64 bodies | - | - | - |
 | \`CAROM_ENABLE_BODY_EDITS\` | removing bodies and the \`carom_body_set_*\` / \`carom_body_apply_*\` calls ($(code_list "$edits"), stubs left) | always, unless the program calls them | $(fn_sum "$default_lib" "$edits") | - | - |
