@@ -1217,6 +1217,19 @@ static void cr_push_up(carom_world *w, const cr_contact *c, int u, int j, float 
 #endif
 }
 
+/* The normal velocities, seen from below up, of body u's point j of its
+ * supporting contact c (*vu) and of the supporting body's (*vl). */
+CR_INLINE void cr_support_vn(const carom_world *w, const cr_contact *c, int u, int j,
+                             float *vu, float *vl)
+{
+    const cr_contact_point *cp = &c->pts[j];
+    const int upper_b = u == c->b;
+    const cr_body *U = &w->bodies[u], *L = &w->bodies[upper_b ? c->a : c->b];
+    float sign = upper_b ? 1.0f : -1.0f;
+    *vu = cr_mul(sign, cr_vdot(cr_point_velocity(U->v, U->w, upper_b ? cp->rb : cp->ra), c->n));
+    *vl = cr_mul(sign, cr_vdot(cr_point_velocity(L->v, L->w, upper_b ? cp->ra : cp->rb), c->n));
+}
+
 void cr_solver_shock(carom_world *w, const cr_substep *s)
 {
     int i, k, j;
@@ -1234,20 +1247,14 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
             if (cr_shock_of(w, p, u)) {
                 const cr_contact *c = &w->contacts[p->contact];
                 const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
-                const cr_body *U = &w->bodies[u];
-                const cr_body *L = &w->bodies[u == c->b ? c->a : c->b];
-                float sign = u == c->b ? 1.0f : -1.0f;
                 float err[CR_MANIFOLD_POINTS], x[CR_MANIFOLD_POINTS];
                 int n;
                 for (j = 0; j < c->count; ++j) {
                     const cr_contact_point *cp = &c->pts[j];
-                    cr_v2 ru = u == c->b ? cp->rb : cp->ra;
-                    cr_v2 rl = u == c->b ? cp->ra : cp->rb;
                     float sep = w->sep_cached ? cp->pp : cr_current_sep(c, cp, sa, sb);
                     float bias = cr_gt(sep, 0.0f) ? cr_mul(sep, s->inv_h) : 0.0f;
-                    /* point velocities along the normal, from below up */
-                    float vu = cr_mul(sign, cr_vdot(cr_point_velocity(U->v, U->w, ru), c->n));
-                    float vl = cr_mul(sign, cr_vdot(cr_point_velocity(L->v, L->w, rl), c->n));
+                    float vu, vl;
+                    cr_support_vn(w, c, u, j, &vu, &vl);
                     /* stop a sinking body, never lift one: a support moving
                      * up is no reason to push what rests on it (that would
                      * be momentum from nowhere) */
@@ -1258,13 +1265,9 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
                     cr_push_up(w, c, u, j, x[j], 0);
                 if (CR_TWO_POINTS && n == 1 && c->count == 2) {
                     /* sequential: the second point after the first */
-                    const cr_contact_point *cp = &c->pts[1];
-                    cr_v2 ru = u == c->b ? cp->rb : cp->ra;
-                    cr_v2 rl = u == c->b ? cp->ra : cp->rb;
-                    float vu = cr_mul(sign, cr_vdot(cr_point_velocity(U->v, U->w, ru), c->n));
-                    float vl = cr_mul(sign, cr_vdot(cr_point_velocity(L->v, L->w, rl), c->n));
-                    float e2 = cr_neg(cr_sub(vu, cr_min(vl, 0.0f)));
-                    float e[2], y[2];
+                    float vu, vl, e2, e[2], y[2];
+                    cr_support_vn(w, c, u, 1, &vu, &vl);
+                    e2 = cr_neg(cr_sub(vu, cr_min(vl, 0.0f)));
                     e[0] = 0.0f;
                     e[1] = e2;
                     if (cr_one_sided(w, c, u, e, y))
@@ -1319,7 +1322,7 @@ void cr_solver_unload(carom_world *w)
                 cr_contact *c = &w->contacts[p->contact];
                 cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
                 const cr_body *U = u == c->b ? B : A, *L = u == c->b ? A : B;
-                float sign = u == c->b ? 1.0f : -1.0f, rest;
+                float rest;
                 float err[CR_MANIFOLD_POINTS], x[CR_MANIFOLD_POINTS];
                 int n, any = 0;
                 /* only under a body CR_UNLOAD_MASS_RATIO times heavier, or
@@ -1332,13 +1335,10 @@ void cr_solver_unload(carom_world *w)
                 }
                 rest = cr_rest_speed(w, c->a, c->b);
                 for (j = 0; j < c->count; ++j) {
-                    const cr_contact_point *cp = &c->pts[j];
-                    cr_v2 ru = u == c->b ? cp->rb : cp->ra;
-                    cr_v2 rl = u == c->b ? cp->ra : cp->rb;
-                    float vu = cr_mul(sign, cr_vdot(cr_point_velocity(U->v, U->w, ru), c->n));
-                    float vl = cr_mul(sign, cr_vdot(cr_point_velocity(L->v, L->w, rl), c->n));
-                    float rise = cr_sub(vu, vl);
-                    err[j] = cr_gt(rise, rest) && cr_gt(cp->pn, 0.0f) ? rise : 0.0f;
+                    float vu, vl, rise;
+                    cr_support_vn(w, c, u, j, &vu, &vl);
+                    rise = cr_sub(vu, vl);
+                    err[j] = cr_gt(rise, rest) && cr_gt(c->pts[j].pn, 0.0f) ? rise : 0.0f;
                     any |= cr_gt(err[j], 0.0f);
                 }
                 if (any) {
