@@ -1052,11 +1052,29 @@ static unsigned cr_shock_flag(const cr_pair *p, int u)
     return p->a == u ? CR_CONTACT_SHOCK_A : CR_CONTACT_SHOCK_B;
 }
 
+/* The unloading acts under a body at least this many times heavier than
+ * the one below it (and then down the column it pushes): where the sweeps
+ * are slow to take an excess back. Between bodies of like mass they take
+ * it back within the substep, and the turning the warm start gives a box
+ * whose two points' impulses no longer balance (as much as 5 rad/s in a
+ * settled pile of 10^4 bodies, gone after the first sweep) read as a rise
+ * kept a deep pile from ever sleeping when every support was unloaded. */
+#define CR_UNLOAD_MASS_RATIO 2.0f
+
+/* Is u at least CR_UNLOAD_MASS_RATIO times heavier than the dynamic body
+ * `lower` it rests on? */
+static int cr_heavy_on(const cr_body *U, const cr_body *lower)
+{
+    return lower->type == CAROM_BODY_DYNAMIC &&
+           cr_le(cr_mul(CR_UNLOAD_MASS_RATIO, U->inv_m), lower->inv_m);
+}
+
 void cr_solver_mark_shocks(carom_world *w)
 {
     int i, k;
     cr_v2 up;
     w->shock_marked = w->contact_edits;
+    w->heavy_supports = 0;
     for (i = 0; i < w->contact_count; ++i)
         w->contacts[i].flags &= (unsigned short)~(CR_CONTACT_SHOCK_A | CR_CONTACT_SHOCK_B);
     if (w->support_count == 0 || !cr_up(w, &up))
@@ -1067,8 +1085,10 @@ void cr_solver_mark_shocks(carom_world *w)
             const cr_pair *p = &w->pairs[k];
             if (cr_support_of(w, p, u, up) &&
                 cr_gt(cr_lift(&w->contacts[p->contact], p->a == u ? p->b : p->a, up),
-                      CR_SHOCK_COS))
+                      CR_SHOCK_COS)) {
                 w->contacts[p->contact].flags |= (unsigned short)cr_shock_flag(p, u);
+                w->heavy_supports += cr_heavy_on(&w->bodies[u], &w->bodies[p->a == u ? p->b : p->a]);
+            }
             k = p->a == u ? p->next_a : p->next_b;
         }
     }
@@ -1297,19 +1317,12 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
  * in one pass, down to the static body that takes the rest; resting
  * contacts, which the warm start leaves at rest, are untouched.
  */
-/* The unloading acts under a body at least this many times heavier than
- * the one below it (and then down the column it pushes): where the sweeps
- * are slow to take an excess back. Between bodies of like mass they take
- * it back within the substep, and the turning the warm start gives a box
- * whose two points' impulses no longer balance (as much as 5 rad/s in a
- * settled pile of 10^4 bodies, gone after the first sweep) read as a rise
- * kept a deep pile from ever sleeping when every support was unloaded. */
-#define CR_UNLOAD_MASS_RATIO 2.0f
 void cr_solver_unload(carom_world *w)
 {
     int i, k, j;
-    /* (no support order without gravity: nothing to walk) */
-    if (!CAROM_ENABLE_STACKING)
+    /* (no support order without gravity: nothing to walk; nothing to
+     * unload without a heavy body on a light one) */
+    if (!CAROM_ENABLE_STACKING || w->heavy_supports == 0)
         return;
     for (i = 0; i < w->support_count; ++i)
         w->sbody[w->support[i]].pushed = 0;
@@ -1327,9 +1340,7 @@ void cr_solver_unload(carom_world *w)
                 int n, any = 0;
                 /* only under a body CR_UNLOAD_MASS_RATIO times heavier, or
                  * under one an unloading above has pushed up */
-                if (!w->sbody[u].pushed &&
-                    !(L->type == CAROM_BODY_DYNAMIC &&
-                      cr_le(cr_mul(CR_UNLOAD_MASS_RATIO, U->inv_m), L->inv_m))) {
+                if (!w->sbody[u].pushed && !cr_heavy_on(U, L)) {
                     k = next;
                     continue;
                 }

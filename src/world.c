@@ -373,6 +373,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->support_count = 0;
     w->sep_cached = 0;
     w->contact_edits = w->shock_marked = 0u;
+    w->heavy_supports = 0;
     w->drift = CR_AT(drift, cr_drift);
     w->heap_count = 0;
     w->mark = CR_AT(mark, int);

@@ -130,6 +130,10 @@ struct carom_world {
     unsigned contact_edits;   /* contacts made or remade during steps */
     unsigned shock_marked;    /* contact_edits when cr_solver_mark_shocks
                                  last ran */
+    int heavy_supports;       /* of the contacts it marked, those under a
+                                 body CR_UNLOAD_MASS_RATIO times heavier
+                                 than the dynamic body below (0: the warm
+                                 start's unloading has nothing to do) */
     int sep_cached;           /* every solved point's separation at the
                                  current poses is in its pp (no position
                                  changed since the last velocity sweep) */
