@@ -60,8 +60,10 @@ static int cr_circles(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
     if (cr_gt(dist2, cr_mul(far, far)))
         return 0;
     dist = cr_sqrt(dist2);
-    /* concentric circles: any normal is right; pick +y deterministically */
-    n = cr_gt(dist, 0.0f) ? cr_vscale(cr_div(1.0f, dist), p) : cr_v(0.0f, 1.0f);
+    /* Concentric circles: any normal is right; pick +y deterministically.
+     * A squared distance below FLT_MIN counts as concentric: it is
+     * subnormal, and p / sqrt of it is not of unit length. */
+    n = cr_lt(dist2, CR_ROT_MIN_LEN2) ? cr_v(0.0f, 1.0f) : cr_vscale(cr_div(1.0f, dist), p);
     m->n = n;
     m->count = 1;
     m->pts[0].sep = cr_sub(dist, r);
@@ -111,11 +113,19 @@ static int cr_polygon_circle_at(const cr_shape *P, cr_v2 c, float r,
         float dist2 = cr_vlen2(d), dist;
         if (cr_gt(dist2, cr_mul(far, far)))
             return 0;
-        dist = cr_sqrt(dist2);
-        normal = cr_vscale(cr_div(1.0f, dist), d);
-        sep = cr_sub(dist, r);
-        surface = v;
-    } else {
+        if (cr_lt(dist2, CR_ROT_MIN_LEN2)) {
+            /* the centre within sqrt(FLT_MIN) of the vertex: d / |d| would
+             * not be of unit length (|d|^2 subnormal); the face normal is
+             * as right, and s <= |d| is as small */
+            vertex = -1;
+        } else {
+            dist = cr_sqrt(dist2);
+            normal = cr_vscale(cr_div(1.0f, dist), d);
+            sep = cr_sub(dist, r);
+            surface = v;
+        }
+    }
+    if (vertex < 0) {
         /* face region, or the centre inside: out through the face of least
          * penetration */
         normal = P->norms[face];

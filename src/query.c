@@ -226,8 +226,9 @@ static int cr_ray_shape(const carom_world *w, int s, cr_v2 p0, cr_v2 d, float *t
         cr_v2 f = cr_vsub(p0, b->x), m, u, n;
         float a = cr_vdot(d, d), r2 = cr_mul(sh->radius, sh->radius);
         float len, tc, h, nn;
-        if (!cr_gt(a, 0.0f) || cr_lt(cr_vdot(f, f), r2))
-            return 0; /* no length, or starting inside */
+        if (cr_lt(a, CR_ROT_MIN_LEN2) || cr_lt(cr_vdot(f, f), r2))
+            return 0; /* no length (|d|^2 zero or subnormal: d / |d| would
+                         not be a unit vector), or starting inside */
         len = cr_sqrt(a);
         u = cr_vscale(cr_div(1.0f, len), d);
         tc = cr_neg(cr_vdot(f, u)); /* distance along u to the closest approach */

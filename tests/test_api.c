@@ -821,6 +821,29 @@ START_TEST(test_long_ray_hits_a_circle_exactly)
 }
 END_TEST
 
+/* A ray shorter than sqrt(FLT_MIN) (|d|^2 subnormal) has no direction that
+ * d / |d| gives to unit length: it counts as no ray, even from a point on
+ * a circle's surface; a ray of 1e-6 m from there hits at once, with the
+ * outward normal. */
+START_TEST(test_ray_too_short_for_a_direction_finds_nothing)
+{
+    carom_world_def wd = zero_g(1);
+    tw t = tw_make(&wd);
+    carom_ray_hit h;
+    carom_vec2 p0 = {0.0f, 0.0f}, tiny = {1e-20f, 0.0f}, short_ = {1e-6f, 0.0f};
+    int found = 1;
+    add_ball(&t, 0.5f, 0.5f, 0.0f, 0.0f, 0.0f); /* surface through p0 */
+    ck_assert_int_eq(carom_world_raycast(t.w, p0, tiny, &h, &found), CAROM_OK);
+    ck_assert_int_eq(found, 0);
+    ck_assert_int_eq(carom_world_raycast(t.w, p0, short_, &h, &found), CAROM_OK);
+    ck_assert_int_eq(found, 1);
+    ck_assert_close(h.fraction, 0.0, 1e-6);
+    ck_assert_close(h.normal.x, -1.0, 1e-6);
+    ck_assert_close(h.normal.y, 0.0, 1e-6);
+    tw_free(&t);
+}
+END_TEST
+
 /* A ray's ends lie within CAROM_LIMIT_MAX_LENGTH, like every position
  * (found by the API fuzzer: a 1e19 m ray hit with a NaN fraction). */
 START_TEST(test_ray_beyond_the_length_limit_is_refused)
@@ -1224,6 +1247,7 @@ Suite *suite_api(void)
     tcase_add_test(tq, test_queries_stop_and_rays_miss_where_they_should);
     tcase_add_test(tq, test_long_ray_hits_a_circle_exactly);
     tcase_add_test(tq, test_ray_beyond_the_length_limit_is_refused);
+    tcase_add_test(tq, test_ray_too_short_for_a_direction_finds_nothing);
     tcase_add_test(tq, test_queries_and_sensors_see_a_body_pushed_out_of_its_box);
     suite_add_tcase(s, tb);
     suite_add_tcase(s, tk);

@@ -281,6 +281,75 @@ START_TEST(test_concentric_circles_have_a_unit_normal_and_full_depth)
 }
 END_TEST
 
+/* Centres apart by less than sqrt(FLT_MIN) ~ 1.1e-19: the squared distance
+ * is subnormal (or zero), so p / sqrt(|p|^2) is not of unit length (up to
+ * 1.017 long before this was guarded; found by fuzz_scene_run). The normal
+ * must still be a unit vector, the depth the sum of the radii to float
+ * precision. Each offset is checked in x and in y, in both orders. */
+START_TEST(test_nearly_concentric_circles_have_a_unit_normal)
+{
+    static const float offsets[] = {8.50962e-23f, 1e-20f, 1.0e-30f, 1e-38f,
+                                    1e-45f, -8.50962e-23f};
+    size_t i;
+    int axis, order;
+    for (i = 0; i < sizeof offsets / sizeof offsets[0]; ++i)
+        for (axis = 0; axis < 2; ++axis)
+            for (order = 0; order < 2; ++order) {
+                float dx = axis == 0 ? offsets[i] : 0.0f;
+                float dy = axis == 1 ? offsets[i] : 0.0f;
+                tshape a = make_circle(0, 0, 0.5f);
+                tshape b = make_circle(dx, dy, 0.5f);
+                cr_manifold m;
+                ck_assert_int_eq(order ? collide(&b, &a, 0.0f, &m)
+                                       : collide(&a, &b, 0.0f, &m), 1);
+                ck_assert_close(hypot(m.n.x, m.n.y), 1.0, 1e-7);
+                ck_assert_close(m.pts[0].sep, -1.0, 1e-7);
+            }
+}
+END_TEST
+
+/* A circle centre exactly on a polygon vertex (polygon at the origin, not
+ * turned, so the centre in the polygon's frame is the vertex itself). A
+ * rounding can make the centre test as just outside a face, beyond that
+ * vertex, where d = centre - vertex = 0 and d / |d| is 0/0. The normal
+ * must be a finite unit vector and the depth the radius. Every vertex of
+ * several irregular polygons, in both orders. */
+START_TEST(test_circle_centre_on_a_polygon_vertex_has_a_unit_normal)
+{
+    static const float polys[][5][2] = {
+        {{0.0f, 0.0f}, {2.0f, 0.1f}, {0.3f, 1.7f}, {0.0f, 0.0f}, {0.0f, 0.0f}},
+        {{-0.7f, -0.3f}, {0.9f, -0.6f}, {1.1f, 0.7f}, {-0.2f, 1.3f}, {-1.0f, 0.4f}},
+        {{0.1f, 0.2f}, {3.3f, 0.7f}, {1.9f, 2.9f}, {0.0f, 0.0f}, {0.0f, 0.0f}},
+        {{-1.3f, -0.7f}, {0.6f, -1.1f}, {1.7f, 0.2f}, {0.0f, 1.9f}, {0.0f, 0.0f}}};
+    static const int counts[] = {3, 5, 3, 4};
+    size_t k;
+    int i, order;
+    for (k = 0; k < sizeof counts / sizeof counts[0]; ++k) {
+        carom_body_def bd = carom_default_body_def();
+        tshape poly;
+        bd.shape = CAROM_SHAPE_POLYGON;
+        bd.vertex_count = counts[k];
+        for (i = 0; i < counts[k]; ++i) {
+            bd.vertices[i].x = polys[k][i][0];
+            bd.vertices[i].y = polys[k][i][1];
+        }
+        ck_assert_int_eq(cr_body_build(&bd, &poly.b, &poly.info), CAROM_OK);
+        poly.b.x = cr_v(0.0f, 0.0f);
+        for (i = 0; i < counts[k]; ++i)
+            for (order = 0; order < 2; ++order) {
+                cr_v2 v = poly.info.shape.verts[i];
+                tshape c = make_circle(v.x, v.y, 0.25f);
+                cr_manifold m;
+                ck_assert_int_eq(order ? collide(&c, &poly, 0.0f, &m)
+                                       : collide(&poly, &c, 0.0f, &m), 1);
+                ck_assert(isfinite(m.n.x) && isfinite(m.n.y));
+                ck_assert_close(hypot(m.n.x, m.n.y), 1.0, 1e-6);
+                ck_assert_close(m.pts[0].sep, -0.25, 1e-6);
+            }
+    }
+}
+END_TEST
+
 /* Two boxes corner to corner, apart by gx along x and gy < gx along y, in
  * each of the four diagonal directions and both orders: no face overlaps
  * the other sideways, so there is one point, the nearer corner; its
@@ -405,6 +474,8 @@ Suite *suite_narrowphase(void)
     tcase_add_test(tc, test_polygons_within_reach_give_speculative_points);
     tcase_add_test(tc, test_separation_is_a_lower_bound_of_the_distance);
     tcase_add_test(tc, test_concentric_circles_have_a_unit_normal_and_full_depth);
+    tcase_add_test(tc, test_nearly_concentric_circles_have_a_unit_normal);
+    tcase_add_test(tc, test_circle_centre_on_a_polygon_vertex_has_a_unit_normal);
     tcase_add_test(tc, test_boxes_corner_to_corner_give_one_point_at_the_axis_gap);
     tcase_add_test(tc, test_corner_hanging_past_a_face_end_counts_its_true_distance);
     suite_add_tcase(s, tc);
