@@ -1123,7 +1123,7 @@ void cr_solver_prime(carom_world *w, const cr_substep *s)
         return;
     for (i = 0; i < w->support_count; ++i) {
         int u = w->support[i];
-        w->sbody[u].load = cr_mul(cr_mul(w->info[u].m, g), s->h);
+        w->sbody[u].u.load = cr_mul(cr_mul(w->info[u].m, g), s->h);
     }
     for (i = w->support_count - 1; i >= 0; --i) {
         int u = w->support[i], supports = 0;
@@ -1135,7 +1135,7 @@ void cr_solver_prime(carom_world *w, const cr_substep *s)
         }
         if (supports == 0)
             continue;
-        share = cr_div(w->sbody[u].load, (float)supports);
+        share = cr_div(w->sbody[u].u.load, (float)supports);
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];
             int v = p->a == u ? p->b : p->a, next = p->a == u ? p->next_a : p->next_b;
@@ -1159,7 +1159,7 @@ void cr_solver_prime(carom_world *w, const cr_substep *s)
                     c->pts[0].pn = total;
                 }
                 if (w->bodies[v].type == CAROM_BODY_DYNAMIC)
-                    w->sbody[v].load = cr_add(w->sbody[v].load, share);
+                    w->sbody[v].u.load = cr_add(w->sbody[v].u.load, share);
             }
             k = next;
         }

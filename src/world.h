@@ -32,7 +32,13 @@ typedef struct cr_solver_body {
     cr_rot dq;  /* rotation since the start of the step */
     cr_v2 vp;   /* pseudo-velocity of the position correction */
     float wp;
-    float load; /* priming: weight carried, as an impulse per substep */
+    union {
+        float load;     /* priming (cr_solver_prime, before the substeps):
+                           weight carried, as an impulse per substep */
+        int hold_group; /* events, while held: the mark stamp of the hold
+                           whose impulses its drift carries, 0 if none
+                           (cr_hold_join) */
+    } u;
     int level;  /* support level: 0 rests on a static body, n + 1 on a
                    level-n body; -1 not supported (or no gravity) */
     cr_v2 a_held; /* events: its drift before the first hold of this */

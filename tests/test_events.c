@@ -665,6 +665,81 @@ START_TEST(test_isolated_bodies_conserve_momentum)
 }
 END_TEST
 
+/*
+ * Fourteen circles and boxes thrown together in zero gravity (friction up
+ * to 0.6, restitution 0 or up to 1, spinning), one seed per loop run,
+ * with each events method: no external force acts, so the total momentum
+ * stays what it was, every step, to float rounding: within 1e-5 of the
+ * sum of |m vx| + |m vy|. Caught: an impact's hold of a pressed cluster
+ * (its impulses spread over the rest of the substep) dropped for some of
+ * its bodies by a later hold and kept by the others, a hold kept past its
+ * substep as a force on one body, and a hold predicted from a drift of an
+ * earlier substep (up to 1.4 % of the momentum in a step; 22 of these 24
+ * runs failed).
+ */
+START_TEST(test_pressed_clusters_conserve_momentum)
+{
+    carom_method method = _i % 2 ? CAROM_METHOD_FIRST_IMPACT : CAROM_METHOD_EVENTS;
+    unsigned seed = (unsigned)(_i / 2) * 7919u + 1u;
+    carom_world_def wd = carom_default_world_def();
+    tw t;
+    double P0[2] = {0.0, 0.0}, sum = 0.0;
+    int ids[14], n = 0, i, step;
+    wd.gravity.y = 0.0f;
+    wd.method = method;
+    wd.enable_sleep = 0;
+    wd.max_bodies = 14;
+    t = tw_make(&wd);
+#define RND() (seed = seed * 1664525u + 1013904223u, (float)(seed >> 8) / 16777216.0f)
+    for (i = 0; i < 14; ++i) {
+        carom_body_def bd = carom_default_body_def();
+        float ang = 6.2831853f * RND(), rad = 0.8f + 1.8f * RND();
+        carom_rot dir = carom_rot_from_angle(ang);
+        if (RND() < 0.5f) {
+            float hx = 0.3f + 0.3f * RND();
+            carom_body_def_set_box(&bd, hx, 0.3f + 0.3f * RND());
+        } else {
+            bd.radius = 0.3f + 0.3f * RND();
+        }
+        bd.position.x = rad * dir.c;
+        bd.position.y = rad * dir.s;
+        bd.rotation = carom_rot_from_angle(6.28f * RND());
+        bd.velocity.x = -bd.position.x * (1.0f + 2.0f * RND());
+        bd.velocity.y = -bd.position.y * (1.0f + 2.0f * RND());
+        bd.angular_velocity = 4.0f * (RND() - 0.5f);
+        bd.friction = 0.6f * RND();
+        bd.restitution = RND() < 0.5f ? 0.0f : RND();
+        bd.density = 0.5f + RND();
+        ids[n++] = tw_add(&t, &bd);
+    }
+#undef RND
+    for (i = 0; i < n; ++i) {
+        carom_body_state s = tw_state(&t, ids[i]);
+        float m;
+        carom_body_get_mass(t.w, ids[i], &m, NULL);
+        P0[0] += m * (double)s.velocity.x;
+        P0[1] += m * (double)s.velocity.y;
+        sum += m * (fabs((double)s.velocity.x) + fabs((double)s.velocity.y));
+    }
+    for (step = 0; step < 120; ++step) {
+        double P[2] = {0.0, 0.0};
+        tw_steps(&t, 1);
+        for (i = 0; i < n; ++i) {
+            carom_body_state s = tw_state(&t, ids[i]);
+            float m;
+            carom_body_get_mass(t.w, ids[i], &m, NULL);
+            P[0] += m * (double)s.velocity.x;
+            P[1] += m * (double)s.velocity.y;
+        }
+        ck_assert_msg(hypot(P[0] - P0[0], P[1] - P0[1]) < 1e-5 * sum,
+                      "%s, seed run %d, step %d: momentum (%g, %g) -> (%g, %g), "
+                      "sum |m v| %g", carom_method_name(method), _i, step + 1, P0[0],
+                      P0[1], P[0], P[1], sum);
+    }
+    tw_free(&t);
+}
+END_TEST
+
 /* A box struck off-centre by a circle: linear and angular momentum (about
  * the origin) are conserved through the impact. */
 START_TEST(test_polygon_hit_off_centre_conserves_linear_and_angular_momentum)
@@ -1424,6 +1499,7 @@ Suite *suite_events(void)
     tcase_add_test(tn, test_triangle_pivoting_off_a_slow_corner_stays_out_of_the_floor);
     tcase_add_test(tn, test_spinning_boxes_meeting_on_a_pivot_do_not_pass_into_each_other);
     tcase_add_test(tc, test_isolated_bodies_conserve_momentum);
+    tcase_add_loop_test(tc, test_pressed_clusters_conserve_momentum, 0, 24);
     tcase_add_test(tc, test_impulse_into_a_sleeping_body_mid_step_wakes_it_next_step);
     tcase_add_test(tc, test_polygon_hit_off_centre_conserves_linear_and_angular_momentum);
     tcase_add_test(tc, test_box_landing_nearly_flat_keeps_its_energy);
