@@ -76,6 +76,7 @@ void cr_solver_begin(carom_world *w)
         sb->wp = 0.0f;
         sb->active = 0;
         sb->held = 0;
+        sb->keep = 0;
     }
     w->active_count = 0;
 }
@@ -657,6 +658,7 @@ void cr_solver_set_drifts(carom_world *w, const cr_substep *s)
         d->a = cr_vscale(s->inv_h, cr_vsub(b->v, sb->v0));
         d->alpha = cr_mul(s->inv_h, cr_sub(b->w, sb->w0));
         sb->held = 0;
+        sb->keep = 0;
         ++d->version;
         b->v = sb->v0;
         b->w = sb->w0;

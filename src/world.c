@@ -700,6 +700,7 @@ static void cr_release_active(carom_world *w, float t)
         const cr_body *b = &w->bodies[id];
         cr_drift *d = &w->drift[id];
         w->sbody[id].held = 0;
+        w->sbody[id].keep = 0;
         d->t = t;
         d->a = b->type == CAROM_BODY_DYNAMIC ? b->a : cr_v(0.0f, 0.0f);
         d->alpha = b->type == CAROM_BODY_DYNAMIC ? b->alpha : 0.0f;

@@ -37,7 +37,7 @@ typedef struct cr_solver_body {
                            weight carried, as an impulse per substep */
         int hold_group; /* events, while held: the mark stamp of the hold
                            whose impulses its drift carries, 0 if none
-                           (cr_hold_join) */
+                           (cr_hold_keep) */
     } u;
     int level;  /* support level: 0 rests on a static body, n + 1 on a
                    level-n body; -1 not supported (or no gravity) */
@@ -48,6 +48,8 @@ typedef struct cr_solver_body {
                              this substep */
     unsigned char pushed; /* the warm start's unloading reduced a contact
                              of what rests on it (cr_solver_unload) */
+    unsigned char keep;   /* events: its drift keeps what is left of its
+                             holds' impulses (cr_hold_keep) */
 } cr_solver_body;
 
 /* An entry of the impact queue: a pair's next impact as computed when the
