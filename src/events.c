@@ -1191,7 +1191,7 @@ static void cr_hold_contacts(carom_world *w, int nb, int nr, float t, float t_en
      * rows that took one. They are the solver's for the rest of the
      * substep, so that their hold ends with it (cr_release_active): kept
      * past it, a hold's impulses went on as a force on the body alone for
-     * the rest of the step (2 % of a zero-gravity cluster's momentum in a
+     * the rest of the step (0.2 % of a zero-gravity cluster's momentum in a
      * step). Their group is for cr_hold_keep; the other bodies' earlier
      * holds are dropped, unless they keep them. */
     for (i = 0; i < nb; ++i)
