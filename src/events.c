@@ -427,6 +427,9 @@ void cr_events_begin(carom_world *w)
     w->heap_count = 0;
     w->regrown_count = 0;
     w->resumed_searches = 0;
+    /* (a bound per step: kept over steps, it ran out in the world's
+     * lifetime, and a failed step used up what the retry then lacked) */
+    w->pivot_searches = 0;
     for (k = 0; k < w->pair_count; ++k)
         cr_pair_search(w, k, 0.0f);
 }
