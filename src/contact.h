@@ -66,6 +66,10 @@ typedef struct cr_contact_point {
 #define CR_CONTACT_ROUND_A 64u  /* body a is a circle: its normal lever arm is
                                    0 (cr_contact_lever_a) */
 #define CR_CONTACT_ROUND_B 128u /* ... body b */
+#define CR_CONTACT_UNSETTLED 256u /* events methods: an impact solve left it
+                                     approaching (cr_pair_to_solver): the
+                                     solver's to the step's end, not an
+                                     impact again at the next substep */
 
 typedef struct cr_contact {
     int a, b;          /* body slots, a < b */

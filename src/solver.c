@@ -176,7 +176,7 @@ int cr_solver_classify(carom_world *w, int events)
          * loop takes it at its instant; but a resting contact (touching
          * and pushing since the last step) stays the solver's, or a
          * settling pile would turn into a storm of micro-collisions */
-        if (events && !(c->flags & CR_CONTACT_RESTING))
+        if (events && !(c->flags & (CR_CONTACT_RESTING | CR_CONTACT_UNSETTLED)))
             take = !cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b)) &&
                    !cr_turns_fast(w, A) && !cr_turns_fast(w, B);
         if (take) {
