@@ -946,18 +946,20 @@ START_TEST(test_wedged_box_under_a_heavy_ball_takes_few_impacts)
 END_TEST
 
 /*
- * A box R times heavier dropped 3 m onto a light box (1 kg) resting on the
- * floor, e = 0: both stop at the impact (the exact solution of the
- * simultaneous impact of the two contacts), and the heavy box then rests
- * on the light one. The impact's rows form a chain through the light box
- * whose system has a pivot of about 1/R of its diagonal: left to the
- * sweeps, which take about 1/R of the heavy box's momentum each, the
- * heavy box kept 95 % of its speed (R = 1e3) and sank 4.5 cm into the
- * light box before the contact solver held it (events), or went through
- * it (first-impact). Past what float elimination solves (R = 1e6) the
- * impact is left to the contact solver, as in the discrete method: the
- * heavy box sinks a few centimetres, never through, and comes to rest on
- * top.
+ * A box R times heavier (R = 10 to 1e6) dropped 3 m onto a light box
+ * (1 kg) resting on the floor, e = 0: both stop at the impact, and the
+ * heavy box then rests on the light one. Its face may not sink into the
+ * light box by more than 1 cm (1 % of the boxes' size) at any step, and
+ * the step of the landing leaves it less than 5 % of its speed.
+ * - events, first-impact: the impact's rows form a chain through the
+ *   light box whose system has a pivot of about 1/R of its diagonal; left
+ *   to the sweeps, which take about 1/R of the heavy box's momentum each,
+ *   the heavy box kept 95 % of its speed (R = 1e3) and sank 4.5 cm into
+ *   the light box (events) or went through it (first-impact). Past what
+ *   float elimination solves (R = 1e6) the contact solver takes it.
+ * - discrete: the landing contact was not in the support order (not yet
+ *   touching at the step's start), so shock propagation did not hold it:
+ *   the heavy box sank 3.6 cm (R = 10) to 6.8 cm (R >= 100).
  */
 static void heavy_on_light(carom_method m, float ratio, double *sink, double *v_after,
                            double *y_end)
@@ -1007,17 +1009,11 @@ START_TEST(test_heavy_box_landing_on_a_light_box_stops_at_the_impact)
     for (i = 0; i < 3; ++i)
         for (j = 0; j < 4; ++j) {
             double sink, v_after, y_end;
-            int exact = methods[i] != CAROM_METHOD_DISCRETE && ratios[j] <= 1e5f;
             heavy_on_light(methods[i], ratios[j], &sink, &v_after, &y_end);
-            /* exact impacts: stopped at the instant, within 1 cm (1 % of
-             * the boxes' size) of the light box's face at every step */
-            ck_assert_msg(!exact || sink < 0.01, "method %d, ratio %g: sank %g m into the light box",
+            ck_assert_msg(sink < 0.01, "method %d, ratio %g: sank %g m into the light box",
                           (int)methods[i], (double)ratios[j], sink);
-            ck_assert_msg(!exact || v_after < 0.05, "method %d, ratio %g: kept %g of its speed",
+            ck_assert_msg(v_after < 0.05, "method %d, ratio %g: kept %g of its speed",
                           (int)methods[i], (double)ratios[j], v_after);
-            /* every method: never through, at rest on top in the end */
-            ck_assert_msg(sink < 0.1, "method %d, ratio %g: sank %g m into the light box",
-                          (int)methods[i], (double)ratios[j], sink);
             ck_assert_msg(fabs(y_end - 1.0) < 0.01, "method %d, ratio %g: ends %g m above it",
                           (int)methods[i], (double)ratios[j], y_end);
         }
