@@ -366,6 +366,17 @@
                                                body included) count as still */
 #endif
 
+#ifndef CAROM_SLEEP_WINDOW
+#define CAROM_SLEEP_WINDOW 8.0f /**< sleep times: a body that has stayed
+                                     within the sleep speed times this
+                                     window of where it was for a whole
+                                     window (its mean speed under the
+                                     sleep speed) counts as still too: a
+                                     box rocking on a rolling circle, which
+                                     no contact damps, keeps a pile awake
+                                     for ever otherwise (docs/physics.md) */
+#endif
+
 /* ---- the contact solver (docs/physics.md) ------------------------------- */
 
 #ifndef CAROM_POSITION_CORRECTION

@@ -85,6 +85,9 @@ typedef struct cr_body_info {
     int group;
     void *user_data;
     unsigned generation;       /* of the id that names this slot */
+    cr_v2 sleep_x;             /* sleep (island.c): the pose at the start */
+    cr_rot sleep_q;            /* of the window of its mean speed, */
+    float sleep_window;        /* the window's length so far */
 } cr_body_info;
 
 /* Do bodies with infos a and b (either CR_BODY_FILTERED) collide? */
