@@ -141,6 +141,7 @@ static int cr_find(int *parent, int i)
 
 #endif
 
+#if CAROM_ENABLE_SLEEP
 /*
  * Is body id slow on average: still within sleep_speed x window of where
  * its window started, a whole window (CAROM_SLEEP_WINDOW sleep times)
@@ -166,6 +167,7 @@ static int cr_slow_on_average(carom_world *w, int id, float dt)
     in->sleep_window = cr_add(in->sleep_window, dt);
     return !cr_lt(in->sleep_window, window);
 }
+#endif
 
 void cr_island_sleep(carom_world *w, float dt)
 {
