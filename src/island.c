@@ -38,17 +38,12 @@ static void cr_window_restart(carom_world *w, int slot)
     in->sleep_window = 0.0f;
 }
 
-/* Wake body `slot` and its sleeping island; `keep`: their still times
- * and windows go on (nothing moved them: a still neighbour's box reached
- * them), else they start again. */
-static void cr_island_rouse(carom_world *w, int slot, int keep)
+void cr_island_wake(carom_world *w, int slot)
 {
     int island = w->bodies[slot].sleep_island, j;
     cr_body *b = &w->bodies[slot];
-    if (!keep) {
-        b->still_time = 0.0f;
-        cr_window_restart(w, slot);
-    }
+    b->still_time = 0.0f;
+    cr_window_restart(w, slot);
     if (b->flags & CR_BODY_AWAKE)
         return;
     b->flags |= CR_BODY_AWAKE;
@@ -60,18 +55,11 @@ static void cr_island_rouse(carom_world *w, int slot, int keep)
         if ((o->flags & CR_BODY_ALIVE) && !(o->flags & CR_BODY_AWAKE) &&
             w->bodies[j].sleep_island == island) {
             o->flags |= CR_BODY_AWAKE;
-            if (!keep) {
-                o->still_time = 0.0f;
-                cr_window_restart(w, j);
-            }
+            o->still_time = 0.0f;
+            cr_window_restart(w, j);
             w->bodies[j].sleep_island = -1;
         }
     }
-}
-
-void cr_island_wake(carom_world *w, int slot)
-{
-    cr_island_rouse(w, slot, 0);
 }
 
 static int cr_asleep(const cr_body *b)
@@ -93,16 +81,6 @@ static int cr_awake_mover(const cr_body *b)
  * wakes it: the two are one island now, which sleeps again when all of it
  * is still.
  */
-/* Is awake body b still now (slower than the sleep speed, and not a
- * kinematic body on its way)? */
-static int cr_still_now(const carom_world *w, int i)
-{
-    const cr_body *b = &w->bodies[i];
-    return b->type == CAROM_BODY_DYNAMIC &&
-           !cr_gt(cr_add(cr_vlen(b->v), cr_mul(cr_abs(b->w), w->info[i].shape.extent)),
-                  w->scale.sleep_speed);
-}
-
 int cr_island_wake_touched(carom_world *w)
 {
     int i, woke = 0;
@@ -114,15 +92,11 @@ int cr_island_wake_touched(carom_world *w)
     for (i = 0; i < w->pair_count; ++i) {
         const cr_pair *p = &w->pairs[i];
         const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
-        /* woken by a still body, an island's still time goes on: two
-         * still islands whose boxes meet but that do not touch woke each
-         * other in turn, each starting its still time again, and never
-         * slept (the events method's falling pile of 2000 bodies) */
         if (cr_asleep(A) && cr_awake_mover(B)) {
-            cr_island_rouse(w, p->a, cr_still_now(w, p->b));
+            cr_island_wake(w, p->a);
             woke = 1;
         } else if (cr_asleep(B) && cr_awake_mover(A)) {
-            cr_island_rouse(w, p->b, cr_still_now(w, p->a));
+            cr_island_wake(w, p->b);
             woke = 1;
         }
     }
@@ -206,6 +180,24 @@ void cr_island_sleep(carom_world *w, float dt)
             continue;
         ra = cr_find(parent, c->a);
         rb = cr_find(parent, c->b);
+        if (ra != rb)
+            parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
+    }
+    /* bodies whose boxes meet (a candidate pair) sleep together too, as
+     * the wake above wakes them together: two still islands whose boxes
+     * met without touching woke each other in turn, each wake starting
+     * the woken island's still time again, and never slept (the events
+     * method's falling pile of 2000 bodies) */
+    for (i = 0; i < w->pair_count; ++i) {
+        const cr_pair *p = &w->pairs[i];
+        const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
+        int ra, rb;
+        if (A->type != CAROM_BODY_DYNAMIC || B->type != CAROM_BODY_DYNAMIC ||
+            ((A->flags | B->flags) & CR_BODY_SENSOR) ||
+            !(A->flags & B->flags & CR_BODY_AWAKE))
+            continue;
+        ra = cr_find(parent, p->a);
+        rb = cr_find(parent, p->b);
         if (ra != rb)
             parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
     }

@@ -32,12 +32,12 @@ static int steps_to_sleep(tw *t, int first, int n, int max_steps)
 /*
  * A triangle resting on the floor and a ball dropped beside it, under its
  * slope: their boxes overlap, but the ball stops 4.7 cm from the slope, so
- * they are two islands. The triangle is still first and falls asleep; the
- * still ball's box wakes it (a still body may be about to press on a
+ * they were two islands. The triangle is still first and falls asleep;
+ * the still ball's box wakes it (a still body may be about to press on a
  * sleeping one), and when the ball falls asleep the awake triangle's box
- * wakes the ball. Each wake used to start the woken island's still time
- * again, so the two woke each other in turn for ever. Woken by a still
- * body, an island's still time goes on: both sleep.
+ * wakes the ball. Each wake starts the woken island's still time again,
+ * so the two woke each other in turn for ever. Bodies whose boxes meet
+ * now sleep as one island: both sleep.
  */
 START_TEST(test_still_islands_whose_boxes_meet_fall_asleep)
 {
