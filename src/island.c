@@ -2,10 +2,12 @@
  * island.c -- islands of touching bodies, and sleep.
  *
  * A dynamic body is still while its fastest point, |v| + |w| extent, stays
- * under the sleep speed (CAROM_SLEEP_SPEED_PER_LENGTH x length unit); its
- * still time counts up, and resets when it moves. At the end of a step the
- * bodies linked by touching contacts form islands (union-find over the
- * step's contacts; static bodies do not link islands); an island whose
+ * under the sleep speed (CAROM_SLEEP_SPEED_PER_LENGTH x length unit), or
+ * while its mean speed over a window does (cr_slow_on_average); its still
+ * time counts up, and resets when it moves. At the end of a step the
+ * bodies linked by touching contacts or by meeting boxes form islands
+ * (union-find over the step's contacts and pairs; static bodies do not
+ * link islands); an island whose
  * every body has been still for the world's sleep_time falls asleep: its
  * bodies stop, leave the step's work entirely (no box, no contact, no
  * drift), and remember their island. A sleeping island wakes as a whole
@@ -113,9 +115,15 @@ static int cr_find(int *parent, int i)
     return i;
 }
 
-#endif
 
-#if CAROM_ENABLE_SLEEP
+/* One island of the islands of a and b (the lower root). */
+static void cr_union(int *parent, int a, int b)
+{
+    int ra = cr_find(parent, a), rb = cr_find(parent, b);
+    if (ra != rb)
+        parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
+}
+
 /*
  * Is body id slow on average: still within sleep_speed x window of where
  * its window started, a whole window (CAROM_SLEEP_WINDOW sleep times)
@@ -166,7 +174,6 @@ void cr_island_sleep(carom_world *w, float dt)
     for (i = 0; i < w->contact_count; ++i) {
         const cr_contact *c = &w->contacts[i];
         const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
-        int ra, rb;
         if (!(c->flags & CR_CONTACT_TOUCHING))
             continue;
         /* a body carried by a moving kinematic body never sleeps */
@@ -178,10 +185,7 @@ void cr_island_sleep(carom_world *w, float dt)
 #endif
         if (A->type != CAROM_BODY_DYNAMIC || B->type != CAROM_BODY_DYNAMIC)
             continue;
-        ra = cr_find(parent, c->a);
-        rb = cr_find(parent, c->b);
-        if (ra != rb)
-            parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
+        cr_union(parent, c->a, c->b);
     }
     /* bodies whose boxes meet (a candidate pair) sleep together too, as
      * the wake above wakes them together: two still islands whose boxes
@@ -191,15 +195,9 @@ void cr_island_sleep(carom_world *w, float dt)
     for (i = 0; i < w->pair_count; ++i) {
         const cr_pair *p = &w->pairs[i];
         const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
-        int ra, rb;
-        if (A->type != CAROM_BODY_DYNAMIC || B->type != CAROM_BODY_DYNAMIC ||
-            ((A->flags | B->flags) & CR_BODY_SENSOR) ||
-            !(A->flags & B->flags & CR_BODY_AWAKE))
-            continue;
-        ra = cr_find(parent, p->a);
-        rb = cr_find(parent, p->b);
-        if (ra != rb)
-            parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
+        if (A->type == CAROM_BODY_DYNAMIC && B->type == CAROM_BODY_DYNAMIC &&
+            !((A->flags | B->flags) & CR_BODY_SENSOR) && (A->flags & B->flags & CR_BODY_AWAKE))
+            cr_union(parent, p->a, p->b);
     }
     /* an island sleeps only if it touches something: a body coasting
      * freely (a slow billiard block, a drifting body in zero gravity) is
