@@ -71,7 +71,9 @@
  * the sweeps hardly move (a box 1000 times heavier landing on a light
  * box on the floor: each sweep took 1/1000 of the heavy box's momentum,
  * 128 sweeps left it 95 % of its speed, and it sank through the light
- * box at 1e-3, the old bound). Chains up to about R = 1e6 are solved. */
+ * box at 1e-3, the old bound). Chains up to about R = 1e5 are solved;
+ * past that (R = 1e6) elimination in float is too coarse, the instant is
+ * unsettled, and its contacts stay the solver's (CR_CONTACT_UNSETTLED). */
 #define CR_DIRECT_AFTER 8
 #define CR_DIRECT_MIN_PIVOT 1.0e-6f
 /* A solve that has stalled stops: after at least CR_STALL_MIN sweeps and
@@ -1585,8 +1587,9 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
             int next = p->a == body ? p->next_a : p->next_b;
             /* a resting contact the impact sent one body into is an impact
              * now, for this loop, not the solver; but not after an
-             * unsettled solve in the first-impact method, which would not
-             * search it again: the solver keeps what the solve left */
+             * unsettled solve: then the solver keeps what the solve left
+             * (the first-impact method would not search it again, and
+             * the events method would take it again at the same instant) */
             if (p->contact >= 0 && w->rows_settled) {
                 cr_contact *c = &w->contacts[p->contact];
                 if ((c->flags & CR_CONTACT_SOLVE) &&
