@@ -52,6 +52,18 @@
 #error "carom: CAROM_ENABLE_DISCRETE and CAROM_ENABLE_EVENTS are both 0: no method is left (turn one on)"
 #endif
 
+#ifndef CAROM_ENABLE_CONTINUOUS
+#define CAROM_ENABLE_CONTINUOUS 1 /**< the step's last guard against a
+                                       tunnel: a dynamic body whose step
+                                       carried it into or through a static
+                                       body (a spin faster than the contact
+                                       solver follows) is put back where
+                                       its path met that body, keeping its
+                                       velocity (docs/physics.md,
+                                       "Continuous collision against
+                                       static bodies"); off: no check */
+#endif
+
 #ifndef CAROM_ENABLE_SLEEP
 #define CAROM_ENABLE_SLEEP 1 /**< islands of touching bodies fall asleep when
                                   they stay slow (world def enable_sleep);

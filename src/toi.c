@@ -200,8 +200,9 @@ void cr_swept_box_until(const cr_mover *m, float t0, float t_mid, float t1,
 }
 
 /* The swept boxes above serve every method (the broadphase); what follows
- * times impacts, for the events methods only. */
-#if CAROM_ENABLE_EVENTS
+ * times impacts, for the events methods and the step's continuous guard
+ * (continuous.c). */
+#if CAROM_ENABLE_EVENTS || CR_CONTINUOUS
 
 static void cr_mover_pose(const cr_mover *m, float t, cr_v2 *x, cr_rot *q)
 {
@@ -630,4 +631,4 @@ int cr_time_of_impact_pivot(const cr_mover *A, const cr_mover *B, float t0, floa
 #else
 /* ISO C forbids an empty translation unit */
 typedef int cr_toi_disabled;
-#endif /* CAROM_ENABLE_EVENTS */
+#endif /* CAROM_ENABLE_EVENTS || CR_CONTINUOUS */

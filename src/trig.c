@@ -77,7 +77,9 @@ carom_rot carom_rot_from_angle(float angle)
 {
     return cr_rot_from_angle(angle);
 }
+#endif
 
+#if CAROM_ENABLE_ANGLES || CR_CONTINUOUS
 static float cr_atan_unit(float t)
 {
     int i;
@@ -94,7 +96,7 @@ static float cr_atan_unit(float t)
     return cr_mul(4.0f, sum);
 }
 
-float carom_rot_angle(carom_rot r)
+float cr_rot_angle(carom_rot r)
 {
     float ax = cr_abs(r.c), ay = cr_abs(r.s), a;
     if (cr_eq(ax, 0.0f) && cr_eq(ay, 0.0f))
@@ -109,4 +111,8 @@ float carom_rot_angle(carom_rot r)
         a = cr_neg(a);
     return a;
 }
+#endif
+
+#if CAROM_ENABLE_ANGLES
+float carom_rot_angle(carom_rot r) { return cr_rot_angle(r); }
 #endif /* CAROM_ENABLE_ANGLES */

@@ -11,6 +11,7 @@
 #include "island.h"
 #include "solver.h"
 #include "toi.h"
+#include "continuous.h"
 #include "touch.h"
 
 #define CR_ALIGN 16u
@@ -895,6 +896,11 @@ static carom_status cr_step(carom_world *w)
 
     CR_PHASE(w, CAROM_PHASE_INTEGRATION);
     cr_sync_all(w, dt);
+#if CR_CONTINUOUS
+    CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
+    cr_continuous_statics(w, dt);
+    CR_PHASE(w, CAROM_PHASE_INTEGRATION);
+#endif
     st = cr_finish_velocities(w);
     if (st != CAROM_OK)
         return st;

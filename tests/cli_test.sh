@@ -809,6 +809,16 @@ check "lean --method discrete: CAROM_ENABLE_EVENTS 0" \
     header_has "$tmp/out" CAROM_ENABLE_EVENTS 0
 check "lean --method discrete: CAROM_ENABLE_DISCRETE 1" \
     header_has "$tmp/out" CAROM_ENABLE_DISCRETE 1
+check "lean --method discrete: CAROM_ENABLE_CONTINUOUS 0 (nothing turns)" \
+    header_has "$tmp/out" CAROM_ENABLE_CONTINUOUS 0
+# the octagon spinning 7.5 turns a step into a wall: the discrete method
+# needs the continuous guard, the events method does not
+run lean tools/scenes/limits/spinning-octagon-tunnels.scene --method discrete
+check "lean of a spinning octagon, discrete: CAROM_ENABLE_CONTINUOUS 1" \
+    header_has "$tmp/out" CAROM_ENABLE_CONTINUOUS 1
+run lean tools/scenes/limits/spinning-octagon-tunnels.scene
+check "lean of a spinning octagon, events: CAROM_ENABLE_CONTINUOUS 0" \
+    header_has "$tmp/out" CAROM_ENABLE_CONTINUOUS 0
 # the header compiles, and a world sized by it can be made
 if command -v cc > /dev/null 2>&1; then
     cat > "$tmp/lean_prog.c" <<'EOS'

@@ -17,6 +17,7 @@ int main(void)
     srunner_add_suite(sr, suite_events());
     srunner_add_suite(sr, suite_world());
     srunner_add_suite(sr, suite_island());
+    srunner_add_suite(sr, suite_continuous());
     srunner_add_suite(sr, suite_profile());
     srunner_add_suite(sr, suite_scene());
     srunner_add_suite(sr, suite_robust());

@@ -186,6 +186,7 @@ Suite *suite_narrowphase(void);
 Suite *suite_solver(void);
 Suite *suite_world(void);
 Suite *suite_island(void);
+Suite *suite_continuous(void);
 Suite *suite_scene(void);
 Suite *suite_events(void);
 Suite *suite_toi(void);

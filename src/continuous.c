@@ -1,0 +1,264 @@
+/*
+ * continuous.c -- the step's continuous guard against static bodies.
+ *
+ * The contact solver stops a body at a static body through the
+ * speculative contacts made at the step's start: their anchors and normal
+ * are those of the start pose, and the solver moves them with the body. A
+ * body that turns farther in a substep than that linear picture follows
+ * (a thin rod spinning at hundreds of rad/s, 1.7 rad a substep) can end
+ * the step in a wall, or past it, while its contacts read a gap. The
+ * events methods time every impact on the bodies' paths and do not meet
+ * this; the discrete method did (docs/robustness.md).
+ *
+ * So, once every body is at its end pose: a dynamic body whose step could
+ * carry a point farther than half its half-width (it is "fast") is swept
+ * against each static body of its candidate pairs, along the path from
+ * its start pose to its end pose (uniform motion, the turn the shorter
+ * way round, as Box2D v3 sweeps its fast bodies), by the time of impact
+ * of toi.c. Where that path meets the static body, the normal n there
+ * (static towards body) and the end pose tell what the step did:
+ *
+ *   into     at its end pose the body overlaps the static body deeper
+ *            than where the path met it, by more than
+ *            max(CR_THROUGH_SLOPS slops, CR_THROUGH_WIDTH half-widths):
+ *            more than the solver leaves when it stops a body;
+ *   through  at its end pose the body lies wholly on the static body's
+ *            far side along n, and across n the two still overlap.
+ *
+ * Either way the body is put back at the pose where its path met the
+ * static body, with the velocity it has: the next step's contacts take
+ * the meeting from there (stop or bounce). A path that met the static
+ * body and left it (a bounce within the step, a body sliding off a
+ * ledge) is neither and changes nothing, so in a step with no stop every
+ * bit is as without this guard.
+ */
+#include "continuous.h"
+
+#include "narrowphase.h"
+#include "solver.h"
+#include "toi.h"
+
+#if CR_CONTINUOUS
+
+/* fast: the step could carry a point farther than this much of the
+ * body's half-width (Box2D v3 uses half its smallest extent too) */
+#define CR_FAST_FRACTION 0.5f
+/* into: deeper than the meeting by more than the larger of these */
+#define CR_THROUGH_SLOPS 4.0f
+#define CR_THROUGH_WIDTH 0.5f
+/* |angle| <= pi/2 * chord for |angle| <= pi: a bound of the turn from
+ * its chord |q1 - q0|, without the arctangent */
+#define CR_HALF_PI 1.57079632679489662f
+#define CR_TWO_PI 6.28318530717958648f
+#define CR_INV_TWO_PI 0.159154943091895336f
+/* whole turns a step beyond which a spin is not followed (the float cast
+ * stays far inside a long) */
+#define CR_MAX_TURNS 1.0e6f
+
+/* The farthest shape s at pose (x, q) reaches along unit direction d. */
+static float cr_reach_along(const cr_shape *s, cr_v2 x, cr_rot q, cr_v2 d)
+{
+#if CAROM_ENABLE_POLYGONS
+    if (!CR_KIND_CIRCLE(s->kind)) {
+        cr_v2 dl = cr_inv_rotate(q, d);
+        float far = cr_vdot(dl, s->verts[0]);
+        int k;
+        for (k = 1; k < s->count; ++k)
+            far = cr_max(far, cr_vdot(dl, s->verts[k]));
+        return cr_add(cr_vdot(d, x), far);
+    }
+#endif
+    (void)q;
+    return cr_add(cr_vdot(d, x), s->radius);
+}
+
+/* Whether the body at (x, q) lies wholly past static body S along n, the
+ * normal from S towards where the body met it, with the two overlapping
+ * across n: it went through. */
+static int cr_went_through(const cr_shape *sd, cr_v2 x, cr_rot q, const cr_shape *ss,
+                           cr_v2 xs, cr_rot qs, cr_v2 n)
+{
+    cr_v2 t = cr_vright(n);
+    if (!cr_lt(cr_reach_along(sd, x, q, n), cr_neg(cr_reach_along(ss, xs, qs, cr_vneg(n)))))
+        return 0;
+    /* across n: [-reach(-t), reach(t)] of each overlap */
+    return cr_lt(cr_neg(cr_reach_along(sd, x, q, cr_vneg(t))), cr_reach_along(ss, xs, qs, t)) &&
+           cr_lt(cr_neg(cr_reach_along(ss, xs, qs, cr_vneg(t))), cr_reach_along(sd, x, q, t));
+}
+
+/*
+ * The meeting itself, at the pose where the path met static body s (the
+ * manifold m, normal from s towards body i): each point still
+ * approaching takes Newton's impulse, frictionless, -(1 + e) vn over the
+ * point's effective mass, e the pair's restitution (0 below the rest
+ * speed), the most approaching point first and each once more after the
+ * other. Kept as it was, the velocity that took the body in would take
+ * it in again at the next step, and the body would hang at the meeting
+ * pose while gravity added to it (a rod spinning at 3000 rad/s stayed
+ * above a floor for 2 s, falling at 22 m/s). Against a body that cannot
+ * move, one frictionless impulse with e <= 1 takes energy or keeps it.
+ */
+static void cr_meet_static(carom_world *w, int i, int s, const cr_manifold *m)
+{
+    cr_body *b = &w->bodies[i];
+    float e = cr_max(w->info[i].restitution, w->info[s].restitution);
+    float rest = cr_rest_speed(w, i, s);
+    int pass, k;
+    for (pass = 0; pass < 2 * m->count; ++pass) {
+        int worst = -1;
+        float vn_worst = 0.0f;
+        for (k = 0; k < m->count; ++k) {
+            cr_v2 r = cr_vsub(m->pts[k].p, b->x);
+            float vn = cr_vdot(cr_vadd(b->v, cr_vcross_sv(b->w, r)), m->n);
+            if (cr_lt(vn, vn_worst)) {
+                worst = k;
+                vn_worst = vn;
+            }
+        }
+        if (worst < 0)
+            break; /* no point approaches */
+        {
+            cr_v2 r = cr_vsub(m->pts[worst].p, b->x);
+            float lever = cr_vcross(r, m->n);
+            float k_n = cr_add(b->inv_m, cr_mul(b->inv_I, cr_mul(lever, lever)));
+            float target = cr_gt(cr_neg(vn_worst), rest) ? cr_mul(e, cr_neg(vn_worst)) : 0.0f;
+            float p = cr_div(cr_sub(target, vn_worst), k_n);
+            b->v = cr_vmadd(b->v, cr_mul(p, b->inv_m), m->n);
+            b->w = cr_add(b->w, cr_mul(cr_mul(p, b->inv_I), lever));
+        }
+    }
+    /* a spin can carry every point of the meeting away while the centre
+     * still goes in: then the other corners meet the static body within
+     * the next step, faster than its contacts follow, and the body would
+     * be put back again, step after step. The centre's approach is
+     * answered as a whole (Newton's law on the centre's normal speed, the
+     * spin kept: no energy made) */
+    {
+        float vn = cr_vdot(b->v, m->n);
+        if (cr_lt(vn, 0.0f)) {
+            float target = cr_gt(cr_neg(vn), rest) ? cr_mul(e, cr_neg(vn)) : 0.0f;
+            b->v = cr_vmadd(b->v, cr_sub(target, vn), m->n);
+        }
+    }
+}
+
+/* Body i swept against static body s over the step; 1 if it was put back. */
+static int cr_sweep_static(carom_world *w, int i, int s, float dt)
+{
+    const cr_body *b0 = &w->backup[i];
+    cr_body *b1 = &w->bodies[i], path;
+    const cr_body *S = &w->bodies[s];
+    const cr_shape *sd = &w->info[i].shape, *ss = &w->info[s].shape;
+    float slop = w->scale.slop, tol = cr_mul(CAROM_TOI_TOLERANCE, slop), inv_dt;
+    float turn = 0.0f, toi = 0.0f, sep0, sep1, thr;
+    cr_v2 dx = cr_vsub(b1->x, b0->x), xt;
+    cr_rot qt;
+    cr_drift still;
+    cr_mover A, B;
+    cr_manifold m;
+
+    {
+        /* the turn from the start pose to the end pose, q1 q0^-1, bounded
+         * first by its chord |q1 - q0| (no arctangent for the many bodies
+         * that turn little) */
+        cr_rot r = cr_r(cr_add(cr_mul(b1->q.c, b0->q.c), cr_mul(b1->q.s, b0->q.s)),
+                        cr_sub(cr_mul(b1->q.s, b0->q.c), cr_mul(b1->q.c, b0->q.s)));
+        float chord = cr_vlen(cr_v(cr_sub(b1->q.c, b0->q.c), cr_sub(b1->q.s, b0->q.s)));
+        float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
+        if (!cr_gt(cr_mul(sd->extent, cr_mul(CR_HALF_PI, chord)), limit))
+            return 0; /* turns too little to outrun its contacts */
+        /* the turn the shorter way round, then the whole turns its spin
+         * made besides (the turn nearest its mean spin times dt): a rod
+         * spinning 8 turns a step is swept on its spin, so that where it
+         * meets the static body its tip is coming down */
+        turn = cr_rot_angle(r);
+        {
+            float spun = cr_mul(cr_mul(0.5f, cr_add(b0->w, b1->w)), dt);
+            float turns = cr_mul(cr_sub(spun, turn), CR_INV_TWO_PI);
+            float whole = (float)(long)(cr_ge(turns, 0.0f) ? cr_add(turns, 0.5f)
+                                                            : cr_sub(turns, 0.5f));
+            if (cr_lt(cr_abs(turns), CR_MAX_TURNS))
+                turn = cr_add(turn, cr_mul(whole, CR_TWO_PI));
+        }
+        if (!cr_gt(cr_mul(sd->extent, cr_abs(turn)), limit))
+            return 0;
+    }
+    /* the path: from the start pose, uniform motion to the end pose */
+    inv_dt = cr_div(1.0f, dt);
+    path = *b0;
+    path.v = cr_vscale(inv_dt, dx);
+    path.w = cr_mul(turn, inv_dt);
+    still.t = 0.0f;
+    still.a = cr_v(0.0f, 0.0f);
+    still.alpha = 0.0f;
+    still.version = 0;
+    still.v_pre = cr_v(0.0f, 0.0f);
+    still.w_pre = 0.0f;
+    A.s = ss;
+    A.b = S;
+    A.d = &still;
+    B.s = sd;
+    B.b = &path;
+    B.d = &still;
+    /* already touching at the step's start: the meeting is the start
+     * pose (the search below wants the two apart, and would read a spin
+     * leaving the touching point as a graze while the body's centre went
+     * on in: a spinning splinter crept through a wall, a few slops a
+     * step) */
+    sep0 = cr_separation(ss, S->x, S->q, sd, b0->x, b0->q);
+    if (cr_le(sep0, tol)) {
+        xt = b0->x;
+        qt = b0->q;
+    } else {
+        if (!cr_time_of_impact(&A, &B, 0.0f, dt, tol, &toi))
+            return 0;
+        cr_pose_at(&path, &still, toi, &xt, &qt);
+    }
+    /* where it met: the normal from the static body towards it */
+    sep0 = cr_separation(ss, S->x, S->q, sd, xt, qt);
+    if (!cr_finite(sep0) ||
+        !cr_collide(ss, S->x, S->q, sd, xt, qt, cr_add(cr_max(sep0, 0.0f), cr_add(tol, slop)),
+                    w->scale.face_tol, &m))
+        return 0;
+    sep1 = cr_separation(ss, S->x, S->q, sd, b1->x, b1->q);
+    thr = cr_max(cr_mul(CR_THROUGH_SLOPS, slop), cr_mul(CR_THROUGH_WIDTH, sd->half_width));
+    if (!cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) &&
+        !cr_went_through(sd, b1->x, b1->q, ss, S->x, S->q, m.n))
+        return 0;
+    b1->x = xt;
+    b1->q = qt;
+#if CAROM_ENABLE_COMPENSATED
+    b1->xc = cr_v(0.0f, 0.0f);
+#endif
+    cr_meet_static(w, i, s, &m);
+    return 1;
+}
+
+void cr_continuous_statics(carom_world *w, float dt)
+{
+    int k;
+    for (k = 0; k < w->pair_count; ++k) {
+        const cr_pair *p = &w->pairs[k];
+        const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
+        int i, s;
+        if (A->type == CAROM_BODY_STATIC && B->type == CAROM_BODY_DYNAMIC) {
+            s = p->a;
+            i = p->b;
+        } else if (B->type == CAROM_BODY_STATIC && A->type == CAROM_BODY_DYNAMIC) {
+            s = p->b;
+            i = p->a;
+        } else {
+            continue;
+        }
+        if (((A->flags | B->flags) & CR_BODY_SENSOR) || !(w->bodies[i].flags & CR_BODY_AWAKE) ||
+            CR_BODY_IS_CIRCLE(&w->bodies[i]))
+            continue;
+        if (cr_sweep_static(w, i, s, dt))
+            ++w->stats.continuous_stops;
+    }
+}
+
+#else
+/* ISO C forbids an empty translation unit */
+typedef int cr_continuous_disabled;
+#endif /* CR_CONTINUOUS */
