@@ -206,12 +206,11 @@ void cr_touch_update(carom_world *w)
             ++j;
         }
     }
-    {
-        cr_touch *t = w->touch;
-        w->touch = w->touch_next;
-        w->touch_next = t;
-        w->touch_count = n;
-    }
+    /* (touch_next is the impact heap's memory, the next step's: the
+     * list is kept in touch) */
+    for (i = 0; i < n; ++i)
+        w->touch[i] = w->touch_next[i];
+    w->touch_count = n;
 }
 
 void cr_touch_forget(carom_world *w, int s)

@@ -255,7 +255,10 @@ static int cr_layout_of(const cr_caps *c, cr_layout *l)
     CR_PLACE(direct_u, c->direct, int);
     CR_PLACE(events, c->events, carom_event);
     CR_PLACE(touch, c->touches, cr_touch);
-    CR_PLACE(touch_next, c->touches, cr_touch);
+    /* the new touch list is built at the step's end, when the impact
+     * heap is free: it is the heap (12 bytes a slot, at least one slot a
+     * pair, against 8 bytes a touching pair) */
+    l->touch_next = l->heap;
     CR_PLACE(touch_events, c->touch_events, carom_touch_event);
 #undef CR_PLACE
     if (at > limit)

@@ -181,7 +181,8 @@ struct carom_world {
     int error_body;
 
     /* touches (touch.c): the pairs touching after the last step, sorted,
-     * and the events of the last step */
+     * and the events of the last step; touch_next, where the step's end
+     * builds the new list, is the impact heap's memory (free then) */
     cr_touch *touch, *touch_next;
     int touch_count, touch_cap;
     carom_touch_event *touch_events;
