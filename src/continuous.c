@@ -10,11 +10,14 @@
  * events methods time every impact on the bodies' paths and do not meet
  * this; the discrete method did (docs/robustness.md).
  *
- * So, once every body is at its end pose: a dynamic body whose step could
- * carry a point farther than half its half-width (it is "fast") is swept
- * against each static body of its candidate pairs, along the path from
+ * So, once every body is at its end pose: a dynamic polygon whose step
+ * could carry a point farther than half its half-width (it is "fast": by
+ * its turn, and by its translation too where no solver's contact of the
+ * pair covered it) is swept against each static body of its candidate
+ * pairs (and, if it ended outside the box its pairs were found with,
+ * against every static body the grid holds around it), along the path from
  * its start pose to its end pose (uniform motion, the turn the shorter
- * way round, as Box2D v3 sweeps its fast bodies), by the time of impact
+ * way round plus the whole turns of its mean spin), by the time of impact
  * of toi.c. Where that path meets the static body, the normal n there
  * (static towards body) and the end pose tell what the step did:
  *
@@ -26,14 +29,16 @@
  *            far side along n, and across n the two still overlap.
  *
  * Either way the body is put back at the pose where its path met the
- * static body, with the velocity it has: the next step's contacts take
- * the meeting from there (stop or bounce). A path that met the static
+ * static body, and the meeting takes Newton's frictionless impulse there
+ * (cr_meet_static); the next step's contacts take it from there. A path
+ * that met the static
  * body and left it (a bounce within the step, a body sliding off a
  * ledge) is neither and changes nothing, so in a step with no stop every
  * bit is as without this guard.
  */
 #include "continuous.h"
 
+#include "broadphase.h"
 #include "narrowphase.h"
 #include "solver.h"
 #include "toi.h"
@@ -142,8 +147,11 @@ static void cr_meet_static(carom_world *w, int i, int s, const cr_manifold *m)
     }
 }
 
-/* Body i swept against static body s over the step; 1 if it was put back. */
-static int cr_sweep_static(carom_world *w, int i, int s, float dt)
+/* Body i swept against static body s over the step; 1 if it was put back.
+ * covered: a contact of the pair was made at the step's start, whose
+ * speculative points follow the body's translation exactly (then only its
+ * turn can outrun them). */
+static int cr_sweep_static(carom_world *w, int i, int s, float dt, int covered)
 {
     const cr_body *b0 = &w->backup[i];
     cr_body *b1 = &w->bodies[i], path;
@@ -165,22 +173,25 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
                         cr_sub(cr_mul(b1->q.s, b0->q.c), cr_mul(b1->q.c, b0->q.s)));
         float chord = cr_vlen(cr_v(cr_sub(b1->q.c, b0->q.c), cr_sub(b1->q.s, b0->q.s)));
         float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
-        if (!cr_gt(cr_mul(sd->extent, cr_mul(CR_HALF_PI, chord)), limit))
-            return 0; /* turns too little to outrun its contacts */
+        float move = covered ? 0.0f : cr_vlen(dx);
+        float spun = cr_mul(cr_mul(0.5f, cr_add(b0->w, b1->w)), dt);
+        if (!cr_gt(move, limit) &&
+            !cr_gt(cr_mul(sd->extent, cr_mul(CR_HALF_PI, chord)), limit) &&
+            !cr_gt(cr_mul(sd->extent, cr_abs(spun)), limit))
+            return 0; /* moves too little to outrun its contacts */
         /* the turn the shorter way round, then the whole turns its spin
          * made besides (the turn nearest its mean spin times dt): a rod
          * spinning 8 turns a step is swept on its spin, so that where it
          * meets the static body its tip is coming down */
         turn = cr_rot_angle(r);
         {
-            float spun = cr_mul(cr_mul(0.5f, cr_add(b0->w, b1->w)), dt);
             float turns = cr_mul(cr_sub(spun, turn), CR_INV_TWO_PI);
             float whole = (float)(long)(cr_ge(turns, 0.0f) ? cr_add(turns, 0.5f)
                                                             : cr_sub(turns, 0.5f));
             if (cr_lt(cr_abs(turns), CR_MAX_TURNS))
                 turn = cr_add(turn, cr_mul(whole, CR_TWO_PI));
         }
-        if (!cr_gt(cr_mul(sd->extent, cr_abs(turn)), limit))
+        if (!cr_gt(cr_add(move, cr_mul(sd->extent, cr_abs(turn))), limit))
             return 0;
     }
     /* the path: from the start pose, uniform motion to the end pose */
@@ -234,9 +245,82 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     return 1;
 }
 
-void cr_continuous_statics(carom_world *w, float dt)
+/* A body pushed off the path its grid box was swept along (an impulse
+ * sent it where the step's start did not look): its pairs do not hold
+ * the static bodies it went for. They are found in the grid, around its
+ * start and end poses. */
+typedef struct cr_escape_sweep {
+    carom_world *w;
+    int body;
+    float dt;
+} cr_escape_sweep;
+
+static int cr_escape_static(void *ctx, int other)
+{
+    cr_escape_sweep *e = (cr_escape_sweep *)ctx;
+    const cr_body *S = &e->w->bodies[other];
+    if (S->type == CAROM_BODY_STATIC && !(S->flags & CR_BODY_SENSOR) &&
+        cr_may_touch(e->w, e->body, other) && cr_sweep_static(e->w, e->body, other, e->dt, 0))
+        ++e->w->stats.continuous_stops;
+    return 1;
+}
+
+static int cr_box_holds(const cr_box *outer, const cr_box *inner)
+{
+    return cr_ge(inner->lo_x, outer->lo_x) && cr_le(inner->hi_x, outer->hi_x) &&
+           cr_ge(inner->lo_y, outer->lo_y) && cr_le(inner->hi_y, outer->hi_y);
+}
+
+static void cr_continuous_escapes(carom_world *w, float dt)
 {
     int k;
+    if (!w->grid_valid)
+        return;
+    for (k = 0; k < w->awake_count; ++k) {
+        int i = w->awake[k];
+        const cr_body *b = &w->bodies[i];
+        const cr_shape *sh = &w->info[i].shape;
+        cr_box end, start;
+        cr_escape_sweep e;
+        if (b->type != CAROM_BODY_DYNAMIC || (b->flags & CR_BODY_SENSOR) ||
+            CR_BODY_IS_CIRCLE(b))
+            continue;
+        {
+            /* its circle first (no vertex turned): inside, so is it */
+            const cr_box *g = &w->boxes[i];
+            if (cr_ge(cr_sub(b->x.x, sh->extent), g->lo_x) &&
+                cr_le(cr_add(b->x.x, sh->extent), g->hi_x) &&
+                cr_ge(cr_sub(b->x.y, sh->extent), g->lo_y) &&
+                cr_le(cr_add(b->x.y, sh->extent), g->hi_y))
+                continue;
+        }
+        cr_shape_box(sh, b->x, b->q, &end);
+        if (cr_box_holds(&w->boxes[i], &end))
+            continue;
+        cr_shape_box(sh, w->backup[i].x, w->backup[i].q, &start);
+        start.lo_x = cr_min(start.lo_x, end.lo_x);
+        start.lo_y = cr_min(start.lo_y, end.lo_y);
+        start.hi_x = cr_max(start.hi_x, end.hi_x);
+        start.hi_y = cr_max(start.hi_y, end.hi_y);
+        e.w = w;
+        e.body = i;
+        e.dt = dt;
+        (void)cr_broadphase_query(&w->bp, w->boxes, &start, cr_escape_static, &e);
+    }
+}
+
+void cr_continuous_statics(carom_world *w, float dt)
+{
+    /* the discrete method's contacts are all the solver's for the whole
+     * step; in the events methods a contact may be left to the impact
+     * search, which a squeeze can defeat (a rod driven through a floor by
+     * a box 10^6 times heavier landing on it), so there a translation
+     * counts too */
+    int covered = !CAROM_ENABLE_EVENTS ||
+                  (CAROM_ENABLE_DISCRETE && w->method == CAROM_METHOD_DISCRETE);
+    int k;
+    if (w->scale.dyn_polygons == 0)
+        return; /* circles only: nothing to guard */
     for (k = 0; k < w->pair_count; ++k) {
         const cr_pair *p = &w->pairs[k];
         const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
@@ -253,9 +337,10 @@ void cr_continuous_statics(carom_world *w, float dt)
         if (((A->flags | B->flags) & CR_BODY_SENSOR) || !(w->bodies[i].flags & CR_BODY_AWAKE) ||
             CR_BODY_IS_CIRCLE(&w->bodies[i]))
             continue;
-        if (cr_sweep_static(w, i, s, dt))
+        if (cr_sweep_static(w, i, s, dt, covered && p->contact >= 0))
             ++w->stats.continuous_stops;
     }
+    cr_continuous_escapes(w, dt);
 }
 
 #else
