@@ -54,16 +54,16 @@
 
 #ifndef CAROM_ENABLE_CONTINUOUS
 #define CAROM_ENABLE_CONTINUOUS 1 /**< the step's last guard against a
-                                       tunnel: a dynamic polygon whose step
+                                       tunnel: a dynamic body whose step
                                        carried it into or through a static
                                        body (a spin faster than the contact
-                                       solver follows, an impulse past its
-                                       box) is put back where its path met
-                                       that body and takes Newton's impulse
+                                       solver follows, several bodies met
+                                       in a step, an impulse past its box)
+                                       is put back where its path met that
+                                       body and takes Newton's impulse
                                        there (docs/physics.md, "Continuous
                                        collision against static bodies");
-                                       off: no check, about 2.8 KB less
-                                       code (Cortex-M4F) */
+                                       off: no check, about 3 KB less code */
 #endif
 
 #ifndef CAROM_ENABLE_SLEEP

@@ -175,14 +175,11 @@ CR_INLINE cr_rot cr_rot_normalize(cr_rot q)
  * carom_rot_from_angle is this, for programs) */
 carom_rot cr_rot_from_angle(float angle);
 
-/* The continuous guard (continuous.c) is for turning dynamic polygons:
- * without them it has nothing to do and is left out. */
-#define CR_CONTINUOUS                                                          \
-    (CAROM_ENABLE_CONTINUOUS && CAROM_ENABLE_ROTATION && CAROM_ENABLE_POLYGONS && \
-     CAROM_ENABLE_DYNAMIC_POLYGONS)
+/* The continuous guard (continuous.c). */
+#define CR_CONTINUOUS CAROM_ENABLE_CONTINUOUS
 
-/* The angle of r in (-pi, pi] (trig.c; needs CAROM_ENABLE_ANGLES or
- * CR_CONTINUOUS). */
+/* The angle of r in (-pi, pi] (trig.c; needs CAROM_ENABLE_ANGLES, or the
+ * continuous guard with rotation on). */
 float cr_rot_angle(carom_rot r);
 
 #endif /* CAROM_ARITH_H */

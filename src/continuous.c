@@ -3,23 +3,27 @@
  *
  * The contact solver stops a body at a static body through the
  * speculative contacts made at the step's start: their anchors and normal
- * are those of the start pose, and the solver moves them with the body. A
- * body that turns farther in a substep than that linear picture follows
+ * are those of the start pose, and the solver moves them with the body.
+ * A body that turns farther in a substep than that linear picture follows
  * (a thin rod spinning at hundreds of rad/s, 1.7 rad a substep) can end
- * the step in a wall, or past it, while its contacts read a gap. The
- * events methods time every impact on the bodies' paths and do not meet
- * this; the discrete method did (docs/robustness.md).
+ * the step in a wall, or past it, while its contacts read a gap; so can a
+ * body that meets several bodies in one step (bounced off one into the
+ * next), or one an impulse drives off the path its contacts were made for
+ * (a ball under a box 10^6 times heavier landing on it, whose squeeze no
+ * solver holds). The events methods time impacts on the bodies' paths and
+ * meet fewer of these; the discrete method met them all.
  *
- * So, once every body is at its end pose: a dynamic polygon whose step
- * could carry a point farther than half its half-width (it is "fast": by
- * its turn, and by its translation too where no solver's contact of the
- * pair covered it) is swept against each static body of its candidate
- * pairs (and, if it ended outside the box its pairs were found with,
- * against every static body the grid holds around it), along the path from
- * its start pose to its end pose (uniform motion, the turn the shorter
- * way round plus the whole turns of its mean spin), by the time of impact
- * of toi.c. Where that path meets the static body, the normal n there
- * (static towards body) and the end pose tell what the step did:
+ * So, once every body is at its end pose: a dynamic body whose step could
+ * carry a point farther than half its half-width (it is "fast": by its
+ * translation and, for a polygon, its turn times its extent; Box2D v3
+ * takes half the smallest extent too) is swept against each static body
+ * of its candidate pairs (and, if it ended outside the box its pairs were
+ * found with, against every static body the grid holds around it), along
+ * the path from its start pose to its end pose (uniform motion, the turn
+ * the shorter way round plus the whole turns of its mean spin), by the
+ * time of impact of toi.c. Where that path meets the static body, the
+ * normal n there (static towards body) and the end pose tell what the
+ * step did:
  *
  *   into     at its end pose the body overlaps the static body deeper
  *            than where the path met it, by more than
@@ -147,11 +151,8 @@ static void cr_meet_static(carom_world *w, int i, int s, const cr_manifold *m)
     }
 }
 
-/* Body i swept against static body s over the step; 1 if it was put back.
- * covered: a contact of the pair was made at the step's start, whose
- * speculative points follow the body's translation exactly (then only its
- * turn can outrun them). */
-static int cr_sweep_static(carom_world *w, int i, int s, float dt, int covered)
+/* Body i swept against static body s over the step; 1 if it was put back. */
+static int cr_sweep_static(carom_world *w, int i, int s, float dt)
 {
     const cr_body *b0 = &w->backup[i];
     cr_body *b1 = &w->bodies[i], path;
@@ -165,7 +166,13 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt, int covered)
     cr_mover A, B;
     cr_manifold m;
 
-    {
+    if (CR_KIND_CIRCLE(sd->kind) || !CAROM_ENABLE_ROTATION) {
+        /* a circle's surface is where it is, however it turns */
+        if (!cr_gt(cr_vlen(dx), cr_mul(CR_FAST_FRACTION, sd->half_width)))
+            return 0;
+    }
+#if CAROM_ENABLE_ROTATION
+    else {
         /* the turn from the start pose to the end pose, q1 q0^-1, bounded
          * first by its chord |q1 - q0| (no arctangent for the many bodies
          * that turn little) */
@@ -173,7 +180,7 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt, int covered)
                         cr_sub(cr_mul(b1->q.s, b0->q.c), cr_mul(b1->q.c, b0->q.s)));
         float chord = cr_vlen(cr_v(cr_sub(b1->q.c, b0->q.c), cr_sub(b1->q.s, b0->q.s)));
         float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
-        float move = covered ? 0.0f : cr_vlen(dx);
+        float move = cr_vlen(dx);
         float spun = cr_mul(cr_mul(0.5f, cr_add(b0->w, b1->w)), dt);
         if (!cr_gt(move, limit) &&
             !cr_gt(cr_mul(sd->extent, cr_mul(CR_HALF_PI, chord)), limit) &&
@@ -194,6 +201,7 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt, int covered)
         if (!cr_gt(cr_add(move, cr_mul(sd->extent, cr_abs(turn))), limit))
             return 0;
     }
+#endif
     /* the path: from the start pose, uniform motion to the end pose */
     inv_dt = cr_div(1.0f, dt);
     path = *b0;
@@ -260,7 +268,7 @@ static int cr_escape_static(void *ctx, int other)
     cr_escape_sweep *e = (cr_escape_sweep *)ctx;
     const cr_body *S = &e->w->bodies[other];
     if (S->type == CAROM_BODY_STATIC && !(S->flags & CR_BODY_SENSOR) &&
-        cr_may_touch(e->w, e->body, other) && cr_sweep_static(e->w, e->body, other, e->dt, 0))
+        cr_may_touch(e->w, e->body, other) && cr_sweep_static(e->w, e->body, other, e->dt))
         ++e->w->stats.continuous_stops;
     return 1;
 }
@@ -271,56 +279,67 @@ static int cr_box_holds(const cr_box *outer, const cr_box *inner)
            cr_ge(inner->lo_y, outer->lo_y) && cr_le(inner->hi_y, outer->hi_y);
 }
 
+/* Body i, if the step left it outside its box: swept against the static
+ * bodies around its start and end poses. */
+static void cr_escape_check(carom_world *w, int i, float dt)
+{
+    const cr_body *b = &w->bodies[i];
+    const cr_shape *sh = &w->info[i].shape;
+    const cr_box *g = &w->boxes[i];
+    cr_box end, start;
+    cr_escape_sweep e;
+    /* its circle first (no vertex turned): inside, so is it */
+    if (cr_ge(cr_sub(b->x.x, sh->extent), g->lo_x) && cr_le(cr_add(b->x.x, sh->extent), g->hi_x) &&
+        cr_ge(cr_sub(b->x.y, sh->extent), g->lo_y) && cr_le(cr_add(b->x.y, sh->extent), g->hi_y))
+        return;
+    cr_shape_box(sh, b->x, b->q, &end);
+    if (cr_box_holds(g, &end))
+        return;
+    cr_shape_box(sh, w->backup[i].x, w->backup[i].q, &start);
+    start.lo_x = cr_min(start.lo_x, end.lo_x);
+    start.lo_y = cr_min(start.lo_y, end.lo_y);
+    start.hi_x = cr_max(start.hi_x, end.hi_x);
+    start.hi_y = cr_max(start.hi_y, end.hi_y);
+    e.w = w;
+    e.body = i;
+    e.dt = dt;
+    (void)cr_broadphase_query(&w->bp, w->boxes, &start, cr_escape_static, &e);
+}
+
+/* Only an impulse moves a body off the path its box was swept along, and
+ * impulses act through the pairs that touched or met (as for
+ * cr_note_escapes): their dynamic bodies are checked, each once (a flag
+ * kept for the pass). */
 static void cr_continuous_escapes(carom_world *w, float dt)
 {
-    int k;
+    int k, j;
     if (!w->grid_valid)
         return;
-    for (k = 0; k < w->awake_count; ++k) {
-        int i = w->awake[k];
-        const cr_body *b = &w->bodies[i];
-        const cr_shape *sh = &w->info[i].shape;
-        cr_box end, start;
-        cr_escape_sweep e;
-        if (b->type != CAROM_BODY_DYNAMIC || (b->flags & CR_BODY_SENSOR) ||
-            CR_BODY_IS_CIRCLE(b))
+    for (k = 0; k < w->pair_count; ++k) {
+        const cr_pair *p = &w->pairs[k];
+        if (p->contact < 0 && !p->met)
             continue;
-        {
-            /* its circle first (no vertex turned): inside, so is it */
-            const cr_box *g = &w->boxes[i];
-            if (cr_ge(cr_sub(b->x.x, sh->extent), g->lo_x) &&
-                cr_le(cr_add(b->x.x, sh->extent), g->hi_x) &&
-                cr_ge(cr_sub(b->x.y, sh->extent), g->lo_y) &&
-                cr_le(cr_add(b->x.y, sh->extent), g->hi_y))
+        for (j = 0; j < 2; ++j) {
+            int i = j == 0 ? p->a : p->b;
+            cr_body *b = &w->bodies[i];
+            if (b->type != CAROM_BODY_DYNAMIC || (b->flags & (CR_BODY_SENSOR | CR_BODY_SWEPT)) ||
+                !(b->flags & CR_BODY_AWAKE))
                 continue;
+            b->flags |= CR_BODY_SWEPT;
+            cr_escape_check(w, i, dt);
         }
-        cr_shape_box(sh, b->x, b->q, &end);
-        if (cr_box_holds(&w->boxes[i], &end))
-            continue;
-        cr_shape_box(sh, w->backup[i].x, w->backup[i].q, &start);
-        start.lo_x = cr_min(start.lo_x, end.lo_x);
-        start.lo_y = cr_min(start.lo_y, end.lo_y);
-        start.hi_x = cr_max(start.hi_x, end.hi_x);
-        start.hi_y = cr_max(start.hi_y, end.hi_y);
-        e.w = w;
-        e.body = i;
-        e.dt = dt;
-        (void)cr_broadphase_query(&w->bp, w->boxes, &start, cr_escape_static, &e);
+    }
+    for (k = 0; k < w->pair_count; ++k) {
+        const cr_pair *p = &w->pairs[k];
+        w->bodies[p->a].flags &= (unsigned short)~CR_BODY_SWEPT;
+        w->bodies[p->b].flags &= (unsigned short)~CR_BODY_SWEPT;
     }
 }
 
 void cr_continuous_statics(carom_world *w, float dt)
 {
-    /* the discrete method's contacts are all the solver's for the whole
-     * step; in the events methods a contact may be left to the impact
-     * search, which a squeeze can defeat (a rod driven through a floor by
-     * a box 10^6 times heavier landing on it), so there a translation
-     * counts too */
-    int covered = !CAROM_ENABLE_EVENTS ||
-                  (CAROM_ENABLE_DISCRETE && w->method == CAROM_METHOD_DISCRETE);
     int k;
-    if (w->scale.dyn_polygons == 0)
-        return; /* circles only: nothing to guard */
+
     for (k = 0; k < w->pair_count; ++k) {
         const cr_pair *p = &w->pairs[k];
         const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
@@ -334,10 +353,9 @@ void cr_continuous_statics(carom_world *w, float dt)
         } else {
             continue;
         }
-        if (((A->flags | B->flags) & CR_BODY_SENSOR) || !(w->bodies[i].flags & CR_BODY_AWAKE) ||
-            CR_BODY_IS_CIRCLE(&w->bodies[i]))
+        if (((A->flags | B->flags) & CR_BODY_SENSOR) || !(w->bodies[i].flags & CR_BODY_AWAKE))
             continue;
-        if (cr_sweep_static(w, i, s, dt, covered && p->contact >= 0))
+        if (cr_sweep_static(w, i, s, dt))
             ++w->stats.continuous_stops;
     }
     cr_continuous_escapes(w, dt);

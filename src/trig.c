@@ -79,7 +79,7 @@ carom_rot carom_rot_from_angle(float angle)
 }
 #endif
 
-#if CAROM_ENABLE_ANGLES || CR_CONTINUOUS
+#if CAROM_ENABLE_ANGLES || (CR_CONTINUOUS && CAROM_ENABLE_ROTATION)
 static float cr_atan_unit(float t)
 {
     int i;

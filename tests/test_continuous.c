@@ -136,12 +136,13 @@ END_TEST
  * the discrete method (123 m below it after 60 steps) and in the events
  * method (5.2 m). The guard looks for the static bodies of a body that
  * left its box around its start and end poses: in every method the rod
- * ends on the floor, under the box.
+ * ends on the floor, under the box. The same for a ball of 5 mm radius.
  */
 START_TEST(test_rod_driven_into_a_floor_by_a_heavy_box_stays_on_it)
 {
-    int m, k;
-    for (m = 0; m < CAROM_METHOD_COUNT; ++m) {
+    int m, k, ball;
+    for (m = 0; m < CAROM_METHOD_COUNT; ++m)
+      for (ball = 0; ball < 2; ++ball) {
         carom_world_def wd = guard_def((carom_method)m, -10.0f, 1.0f / 60.0f, 4);
         carom_body_def bd = carom_default_body_def();
         tw t;
@@ -155,9 +156,13 @@ START_TEST(test_rod_driven_into_a_floor_by_a_heavy_box_stays_on_it)
         bd.restitution = 0.0f;
         tw_add(&t, &bd);
         bd = carom_default_body_def();
-        carom_body_def_set_box(&bd, 0.03f, 0.0006f);
+        if (ball)
+            bd.radius = 0.005f;
+        else {
+            carom_body_def_set_box(&bd, 0.03f, 0.0006f);
+            bd.angular_velocity = 300.0f;
+        }
         bd.position.y = 1.0f;
-        bd.angular_velocity = 300.0f;
         bd.restitution = 0.0f;
         rod = tw_add(&t, &bd);
         bd = carom_default_body_def();
@@ -174,13 +179,14 @@ START_TEST(test_rod_driven_into_a_floor_by_a_heavy_box_stays_on_it)
         }
         /* the rod's centre never below the floor's top by more than its
          * own half-thickness; the block on the floor, on the rod */
-        ck_assert_msg(lowest > -0.0006f, "%s: the rod's centre reached y = %g",
-                      carom_method_name((carom_method)m), (double)lowest);
+        ck_assert_msg(lowest > -0.0006f, "%s, %s: its centre reached y = %g",
+                      carom_method_name((carom_method)m), ball ? "ball" : "rod",
+                      (double)lowest);
         ck_assert_msg(fabsf(tw_state(&t, block).position.y - 0.2f) < 0.01f,
-                      "%s: the block at y = %g", carom_method_name((carom_method)m),
-                      (double)tw_state(&t, block).position.y);
+                      "%s, %s: the block at y = %g", carom_method_name((carom_method)m),
+                      ball ? "ball" : "rod", (double)tw_state(&t, block).position.y);
         tw_free(&t);
-    }
+      }
 }
 END_TEST
 
