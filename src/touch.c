@@ -15,6 +15,9 @@
  */
 #include "touch.h"
 
+#include <stdint.h>
+#include <string.h>
+
 #include "narrowphase.h"
 
 #if CAROM_ENABLE_TOUCH_EVENTS || CAROM_ENABLE_SENSORS
@@ -81,6 +84,23 @@ static void cr_touch_event(carom_world *w, const cr_touch *t, int begin)
 static int cr_still(const cr_body *b)
 {
     return (b->flags & CR_BODY_ALIVE) && !cr_body_moves(b);
+}
+
+/* Did body s change its pose in the step just taken (against the copy
+ * of its state at the step's start)? Compared as bits: no arithmetic. */
+static int cr_same_bits(float a, float b)
+{
+    uint32_t x, y;
+    memcpy(&x, &a, sizeof x);
+    memcpy(&y, &b, sizeof y);
+    return x == y;
+}
+
+static int cr_moved_in_step(const carom_world *w, int s)
+{
+    const cr_body *b = &w->bodies[s], *b0 = &w->backup[s];
+    return !cr_same_bits(b->x.x, b0->x.x) || !cr_same_bits(b->x.y, b0->x.y) ||
+           !cr_same_bits(b->q.c, b0->q.c) || !cr_same_bits(b->q.s, b0->q.s);
 }
 
 /* Does pair k touch at the end of this step? */
@@ -181,10 +201,15 @@ void cr_touch_update(carom_world *w)
     if (w->escaped_count > 0 && w->sensor_count > 0 && w->grid_valid)
         n = cr_escaped_overlaps(w, n);
 #endif
-    /* what nothing could change keeps touching */
+    /* what nothing could change keeps touching: two bodies that do not
+     * move and did not move in this step (a body that fell asleep at its
+     * end was simulated, and its pairs say whether it still touches: the
+     * continuous guard can have put it back off a sensor it had entered) */
     for (i = 0; i < w->touch_count && n < w->touch_cap; ++i) {
         const cr_touch *t = &w->touch[i];
-        if (cr_still(&w->bodies[t->a]) && cr_still(&w->bodies[t->b & ~CR_TOUCH_SENSOR]))
+        int b = t->b & ~CR_TOUCH_SENSOR;
+        if (cr_still(&w->bodies[t->a]) && cr_still(&w->bodies[b]) &&
+            !cr_moved_in_step(w, t->a) && !cr_moved_in_step(w, b))
             w->touch_next[n++] = *t;
     }
     cr_touch_sort(w, w->touch_next, n);
