@@ -25,8 +25,6 @@
 #define CR_BODY_REGROWN 128u /* its box grew during this step (an impact):
                                 the grid filed it by its first box, so it
                                 counts as escaped (queries, sensors) */
-#define CR_BODY_SWEPT 256u  /* checked by the continuous guard's escape
-                               pass (continuous.c; cleared by the pass) */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

@@ -151,6 +151,29 @@ static void cr_meet_static(carom_world *w, int i, int s, const cr_manifold *m)
     }
 }
 
+/* A bound of the fast test of cr_sweep_static, without its arctangent:
+ * 0 if body i's step cannot carry a point half its half-width. */
+static int cr_may_be_fast(const carom_world *w, int i, float dt)
+{
+    const cr_body *b0 = &w->backup[i], *b1 = &w->bodies[i];
+    const cr_shape *sd = &w->info[i].shape;
+    cr_v2 dx = cr_vsub(b1->x, b0->x);
+    float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
+    if (cr_gt(cr_vlen2(dx), cr_mul(limit, limit)))
+        return 1;
+#if CAROM_ENABLE_ROTATION
+    if (!CR_KIND_CIRCLE(sd->kind)) {
+        float chord = cr_vlen(cr_v(cr_sub(b1->q.c, b0->q.c), cr_sub(b1->q.s, b0->q.s)));
+        float spun = cr_mul(cr_mul(0.5f, cr_add(b0->w, b1->w)), dt);
+        return cr_gt(cr_mul(sd->extent, cr_mul(CR_HALF_PI, chord)), limit) ||
+               cr_gt(cr_mul(sd->extent, cr_abs(spun)), limit);
+    }
+#else
+    (void)dt;
+#endif
+    return 0;
+}
+
 /* Body i swept against static body s over the step; 1 if it was put back. */
 static int cr_sweep_static(carom_world *w, int i, int s, float dt)
 {
@@ -167,8 +190,10 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     cr_manifold m;
 
     if (CR_KIND_CIRCLE(sd->kind) || !CAROM_ENABLE_ROTATION) {
-        /* a circle's surface is where it is, however it turns */
-        if (!cr_gt(cr_vlen(dx), cr_mul(CR_FAST_FRACTION, sd->half_width)))
+        /* a circle's surface is where it is, however it turns (squared:
+         * no root for the many bodies that move little) */
+        float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
+        if (!cr_gt(cr_vlen2(dx), cr_mul(limit, limit)))
             return 0;
     }
 #if CAROM_ENABLE_ROTATION
@@ -288,6 +313,8 @@ static void cr_escape_check(carom_world *w, int i, float dt)
     const cr_box *g = &w->boxes[i];
     cr_box end, start;
     cr_escape_sweep e;
+    if (!cr_may_be_fast(w, i, dt))
+        return; /* (cr_sweep_static would find it too slow to tunnel) */
     /* its circle first (no vertex turned): inside, so is it */
     if (cr_ge(cr_sub(b->x.x, sh->extent), g->lo_x) && cr_le(cr_add(b->x.x, sh->extent), g->hi_x) &&
         cr_ge(cr_sub(b->x.y, sh->extent), g->lo_y) && cr_le(cr_add(b->x.y, sh->extent), g->hi_y))
@@ -308,8 +335,10 @@ static void cr_escape_check(carom_world *w, int i, float dt)
 
 /* Only an impulse moves a body off the path its box was swept along, and
  * impulses act through the pairs that touched or met (as for
- * cr_note_escapes): their dynamic bodies are checked, each once (a flag
- * kept for the pass). */
+ * cr_note_escapes): their dynamic bodies are checked. A body in several
+ * such pairs is checked once for each (a few comparisons; the grid is
+ * searched again only for a body that did escape, and a body put back
+ * by the first search is not put back again). */
 static void cr_continuous_escapes(carom_world *w, float dt)
 {
     int k, j;
@@ -321,18 +350,11 @@ static void cr_continuous_escapes(carom_world *w, float dt)
             continue;
         for (j = 0; j < 2; ++j) {
             int i = j == 0 ? p->a : p->b;
-            cr_body *b = &w->bodies[i];
-            if (b->type != CAROM_BODY_DYNAMIC || (b->flags & (CR_BODY_SENSOR | CR_BODY_SWEPT)) ||
-                !(b->flags & CR_BODY_AWAKE))
-                continue;
-            b->flags |= CR_BODY_SWEPT;
-            cr_escape_check(w, i, dt);
+            const cr_body *b = &w->bodies[i];
+            if (b->type == CAROM_BODY_DYNAMIC && !(b->flags & CR_BODY_SENSOR) &&
+                (b->flags & CR_BODY_AWAKE))
+                cr_escape_check(w, i, dt);
         }
-    }
-    for (k = 0; k < w->pair_count; ++k) {
-        const cr_pair *p = &w->pairs[k];
-        w->bodies[p->a].flags &= (unsigned short)~CR_BODY_SWEPT;
-        w->bodies[p->b].flags &= (unsigned short)~CR_BODY_SWEPT;
     }
 }
 
