@@ -492,7 +492,7 @@ carom_method carom_world_get_method(const carom_world *w)
 void cr_scale_compute(const carom_world *w, cr_scale *s)
 {
     float sum = 0.0f, all = 0.0f;
-    int i, n = 0, m = 0, polygons = 0;
+    int i, n = 0, m = 0;
     for (i = 0; i < w->slot_count; ++i) {
         const cr_body *b = &w->bodies[i];
         if (!(b->flags & CR_BODY_ALIVE))
@@ -502,11 +502,8 @@ void cr_scale_compute(const carom_world *w, cr_scale *s)
         if (b->type == CAROM_BODY_DYNAMIC) {
             sum = cr_add(sum, w->info[i].shape.size);
             ++n;
-            if (!CR_BODY_IS_CIRCLE(b))
-                ++polygons;
         }
     }
-    s->dyn_polygons = polygons;
     if (cr_gt(w->def.length_unit, 0.0f))
         s->length = w->def.length_unit;
     else if (n > 0)

@@ -96,8 +96,6 @@ typedef struct cr_scale {
     float push;       /* largest push-out speed, m/s */
     float face_tol;   /* polygon reference face tolerance, m */
     float sleep_speed;/* m/s */
-    int dyn_polygons; /* dynamic polygons in the world (the continuous
-                         guard has nothing to do without them) */
 } cr_scale;
 
 struct carom_world {
