@@ -30,7 +30,13 @@
  *            max(CR_THROUGH_SLOPS slops, CR_THROUGH_WIDTH half-widths):
  *            more than the solver leaves when it stops a body;
  *   through  at its end pose the body lies wholly on the static body's
- *            far side along n, and across n the two still overlap.
+ *            far side along n, and across n the two still overlap;
+ *   out the far side
+ *            at its end pose the body overlaps the static body by more
+ *            than a slop, and the static body's least way out for it
+ *            points against n (a body driven nearly through a thin wall
+ *            in one step, which the next step's contact would push out
+ *            of the wall's far side).
  *
  * Either way the body is put back at the pose where its path met the
  * static body, and the meeting takes Newton's frictionless impulse there
@@ -55,6 +61,14 @@
 /* into: deeper than the meeting by more than the larger of these */
 #define CR_THROUGH_SLOPS 4.0f
 #define CR_THROUGH_WIDTH 0.5f
+/* out the far side: the way out of the end pose points against the
+ * meeting's normal by more than 60 degrees past square (a wedge's tip,
+ * whose faces are closer than that, is not taken for a far side) */
+#define CR_FAR_SIDE_DOT -0.5f
+/* through by the centre: deeper into the static body than the smaller
+ * of the threshold of "into" and this much of the static body's
+ * half-width (for a wall thinner than the body, half-way to its middle) */
+#define CR_CENTRE_DEPTH 0.5f
 /* |angle| <= pi/2 * chord for |angle| <= pi: a bound of the turn from
  * its chord |q1 - q0|, without the arctangent */
 #define CR_HALF_PI 1.57079632679489662f
@@ -81,18 +95,113 @@ static float cr_reach_along(const cr_shape *s, cr_v2 x, cr_rot q, cr_v2 d)
     return cr_add(cr_vdot(d, x), s->radius);
 }
 
-/* Whether the body at (x, q) lies wholly past static body S along n, the
- * normal from S towards where the body met it, with the two overlapping
- * across n: it went through. */
-static int cr_went_through(const cr_shape *sd, cr_v2 x, cr_rot q, const cr_shape *ss,
-                           cr_v2 xs, cr_rot qs, cr_v2 n)
+/* Whether the two overlap across n, t = n turned right: on
+ * [-reach(-t), reach(t)] of each. */
+static int cr_overlap_across(const cr_shape *sd, cr_v2 x, cr_rot q, const cr_shape *ss,
+                             cr_v2 xs, cr_rot qs, cr_v2 t)
 {
-    cr_v2 t = cr_vright(n);
-    if (!cr_lt(cr_reach_along(sd, x, q, n), cr_neg(cr_reach_along(ss, xs, qs, cr_vneg(n)))))
-        return 0;
-    /* across n: [-reach(-t), reach(t)] of each overlap */
     return cr_lt(cr_neg(cr_reach_along(sd, x, q, cr_vneg(t))), cr_reach_along(ss, xs, qs, t)) &&
            cr_lt(cr_neg(cr_reach_along(ss, xs, qs, cr_vneg(t))), cr_reach_along(sd, x, q, t));
+}
+
+/* Whether the body at (x, q) lies wholly past static body S along n, the
+ * normal from S towards where the body met it at xt, and went through S
+ * to get there: the two overlap across n at the end pose, or where the
+ * straight way from xt to x (turned as at the end) first lies wholly
+ * past S (a body crossing a wall slantwise and past its end within one
+ * step, as a 2 cm body at 20 km/s did). */
+static int cr_went_through(const cr_shape *sd, cr_v2 xt, cr_v2 x, cr_rot q,
+                           const cr_shape *ss, cr_v2 xs, cr_rot qs, cr_v2 n)
+{
+    cr_v2 t = cr_vright(n);
+    float far = cr_neg(cr_reach_along(ss, xs, qs, cr_vneg(n)));
+    float end = cr_reach_along(sd, x, q, n), meet;
+    if (!cr_lt(end, far))
+        return 0;
+    if (cr_overlap_across(sd, x, q, ss, xs, qs, t))
+        return 1;
+    /* where along the way its reach along n crosses S's far side: the
+     * reach is linear in the way's fraction f, from meet (f = 0) to end */
+    meet = cr_reach_along(sd, xt, q, n);
+    if (!cr_gt(meet, far))
+        return 0; /* (past already at the meeting, as turned at the end) */
+    {
+        float f = cr_div(cr_sub(meet, far), cr_sub(meet, end));
+        cr_v2 xf = cr_vmadd(xt, f, cr_vsub(x, xt));
+        return cr_overlap_across(sd, xf, q, ss, xs, qs, t);
+    }
+}
+
+/* Whether the straight way of the body's centre from p0, outside static
+ * body S (shape ss at xs, qs), to p1 goes deeper into S than `depth`:
+ * the centre inside S, the body overlaps it by more than its own inner
+ * size, which no solver leaves. A body crossing a wall's corner
+ * slantwise within one step (a 15 cm ball at 9 km/s came out of a thick
+ * wall's end face) is neither deeper at its end pose than where it met
+ * the wall nor wholly past the face it met. A path bent round S within
+ * the step (a bounce) keeps the centre on the outer side of the face it
+ * met, and so does its straight way. */
+static int cr_centre_through(const cr_shape *ss, cr_v2 xs, cr_rot qs, cr_v2 p0, cr_v2 p1,
+                             float depth)
+{
+#if CAROM_ENABLE_POLYGONS
+    if (!CR_KIND_CIRCLE(ss->kind)) {
+        /* clip the way to S's faces moved in by depth, in S's frame */
+        cr_v2 a = cr_inv_rotate(qs, cr_vsub(p0, xs));
+        cr_v2 d = cr_inv_rotate(qs, cr_vsub(p1, p0));
+        float lo = 0.0f, hi = 1.0f;
+        int k, outside = 0;
+        for (k = 0; k < ss->count; ++k) {
+            /* g(f) = n.(a + f d) - n.v + depth: inside while g <= 0 */
+            float h0 = cr_sub(cr_vdot(ss->norms[k], a), cr_vdot(ss->norms[k], ss->verts[k]));
+            float g0 = cr_add(h0, depth);
+            float gd = cr_vdot(ss->norms[k], d);
+            if (cr_gt(h0, 0.0f))
+                outside = 1;
+            if (cr_eq(gd, 0.0f)) {
+                if (cr_gt(g0, 0.0f))
+                    return 0; /* parallel to the face, outside it */
+            } else if (cr_lt(gd, 0.0f)) {
+                lo = cr_max(lo, cr_div(cr_neg(g0), gd));
+            } else {
+                hi = cr_min(hi, cr_div(cr_neg(g0), gd));
+            }
+        }
+        return outside && cr_lt(lo, hi);
+    }
+#endif
+    {
+        /* a static circle: the way's nearest point to its centre, within
+         * its radius less depth, from outside it */
+        float r = cr_sub(ss->radius, depth), dd, f;
+        cr_v2 a = cr_vsub(p0, xs), d = cr_vsub(p1, p0), c;
+        (void)qs;
+        if (!cr_gt(cr_vlen2(a), cr_mul(ss->radius, ss->radius)))
+            return 0;
+        dd = cr_vlen2(d);
+        if (!cr_gt(dd, 0.0f))
+            return 0;
+        f = cr_clamp(cr_div(cr_neg(cr_vdot(a, d)), dd), 0.0f, 1.0f);
+        c = cr_vmadd(a, f, d);
+        return cr_lt(cr_vlen2(c), cr_mul(r, r));
+    }
+}
+
+/* Whether the body at (x, q), overlapping static body S (sep1 < 0),
+ * would be pushed out of S's far side: S's least way out for it points
+ * against n, the normal where its path met S. A body that crossed most
+ * of a thin wall in one step overlaps it less through the far face than
+ * the near one, so it is neither deeper than the meeting nor wholly past
+ * it, and the next step's contact would finish taking it through. */
+static int cr_out_far_side(const cr_shape *sd, cr_v2 x, cr_rot q, const cr_shape *ss,
+                           const cr_body *S, float sep1, float slop, float face_tol, cr_v2 n)
+{
+    cr_manifold end;
+    if (!cr_lt(sep1, cr_neg(slop)))
+        return 0; /* (the solver's own overlap) */
+    if (!cr_collide(ss, S->x, S->q, sd, x, q, 0.0f, face_tol, &end))
+        return 0;
+    return cr_lt(cr_vdot(end.n, n), CR_FAR_SIDE_DOT);
 }
 
 /*
@@ -267,13 +376,27 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     sep1 = cr_separation(ss, S->x, S->q, sd, b1->x, b1->q);
     thr = cr_max(cr_mul(CR_THROUGH_SLOPS, slop), cr_mul(CR_THROUGH_WIDTH, sd->half_width));
     if (!cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) &&
-        !cr_went_through(sd, b1->x, b1->q, ss, S->x, S->q, m.n))
+        !cr_went_through(sd, xt, b1->x, b1->q, ss, S->x, S->q, m.n) &&
+        !cr_out_far_side(sd, b1->x, b1->q, ss, S, sep1, slop, w->scale.face_tol, m.n) &&
+        !cr_centre_through(ss, S->x, S->q, xt, b1->x,
+                           cr_min(thr, cr_mul(CR_CENTRE_DEPTH, ss->half_width))))
         return 0;
     b1->x = xt;
     b1->q = qt;
 #if CAROM_ENABLE_COMPENSATED
     b1->xc = cr_v(0.0f, 0.0f);
 #endif
+    /* at the meeting's time, toi: without what its forces would have
+     * given it over the rest of the step (kept, a body falling onto a
+     * floor would gain g (dt - toi) |v_y| of kinetic energy a unit mass,
+     * 2e-4 of it at 1000 m/s, with no fall to pay for it) */
+    {
+        float rest_of_step = cr_sub(dt, toi);
+        cr_add_velocity(b1, cr_vscale(cr_neg(rest_of_step), b1->a));
+#if CAROM_ENABLE_ROTATION
+        cr_add_angular(b1, cr_mul(cr_neg(rest_of_step), b1->alpha));
+#endif
+    }
     cr_meet_static(w, i, s, &m);
     return 1;
 }
