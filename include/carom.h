@@ -622,8 +622,9 @@ typedef struct carom_stats {
                               have added kinetic energy to an island, and
                               were scaled back (docs/physics.md) */
     long continuous_stops; /**< bodies put back where their path met a
-                              static body they went into or through
-                              (CAROM_ENABLE_CONTINUOUS, docs/physics.md) */
+                              static or kinematic body they went into or
+                              through (CAROM_ENABLE_CONTINUOUS,
+                              docs/physics.md) */
     int max_pairs_used;  /**< most candidate pairs in one step */
     int max_contacts_used; /**< most contacts in one step */
     int max_impacts_used;  /**< most impacts in one step */

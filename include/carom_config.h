@@ -56,13 +56,16 @@
 #define CAROM_ENABLE_CONTINUOUS 1 /**< the step's last guard against a
                                        tunnel: a dynamic body whose step
                                        carried it into or through a static
-                                       body (a spin faster than the contact
-                                       solver follows, several bodies met
-                                       in a step, an impulse past its box)
-                                       is put back where its path met that
-                                       body and takes Newton's impulse
-                                       there (docs/physics.md, "Continuous
-                                       collision against static bodies");
+                                       or kinematic body (a spin faster
+                                       than the contact solver follows,
+                                       several bodies met in a step, an
+                                       impulse past its box, a kinematic
+                                       wall or blade faster than its
+                                       contacts) is put back where its path
+                                       met that body and takes Newton's
+                                       impulse there (docs/physics.md,
+                                       "Continuous collision against
+                                       static bodies");
                                        off: no check, about 3 KB less code */
 #endif
 

@@ -1,5 +1,6 @@
 /*
- * continuous.c -- the step's continuous guard against static bodies.
+ * continuous.c -- the step's continuous guard against static and
+ * kinematic bodies.
  *
  * The contact solver stops a body at a static body through the
  * speculative contacts made at the step's start: their anchors and normal
@@ -30,21 +31,38 @@
  *            max(CR_THROUGH_SLOPS slops, CR_THROUGH_WIDTH half-widths):
  *            more than the solver leaves when it stops a body;
  *   through  at its end pose the body lies wholly on the static body's
- *            far side along n, and across n the two still overlap;
+ *            far side along n, and across n the two still overlap there
+ *            or where its way first cleared the far side;
  *   out the far side
  *            at its end pose the body overlaps the static body by more
  *            than a slop, and the static body's least way out for it
  *            points against n (a body driven nearly through a thin wall
  *            in one step, which the next step's contact would push out
- *            of the wall's far side).
+ *            of the wall's far side);
+ *   centre through
+ *            the straight way of its centre from the meeting to the end
+ *            pose goes deeper into the static body than the smaller of
+ *            the "into" threshold and CR_CENTRE_DEPTH of the static
+ *            body's half-width (a body crossing a wall's corner
+ *            slantwise, out of its end face).
  *
- * Either way the body is put back at the pose where its path met the
- * static body, and the meeting takes Newton's frictionless impulse there
- * (cr_meet_static); the next step's contacts take it from there. A path
- * that met the static
+ * Any of these, and the body is put back at the pose where its path met
+ * the static body, with the velocity of the meeting's time, and the
+ * meeting takes Newton's frictionless impulse there (cr_meet_static); the
+ * next step's contacts take it from there. A path that met the static
  * body and left it (a bounce within the step, a body sliding off a
- * ledge) is neither and changes nothing, so in a step with no stop every
- * bit is as without this guard.
+ * ledge) is none of them and changes nothing, so in a step with no stop
+ * every bit is as without this guard.
+ *
+ * Kinematic bodies are held against the same way: no impulse moves them
+ * either. One moves uniformly through the step, so the body's path is
+ * swept against its path, and the tests are made at its end pose with
+ * the meeting carried along with it (against a turning one, the centre's
+ * way as seen from it is a curve, followed in pieces, and "through",
+ * whose normal turned, is left out). A body that went in takes the
+ * impulse at the meeting, relative to the kinematic body's point there,
+ * and flies on to the step's end (cr_fly_off), or, if that leaves it in
+ * the kinematic body, is put at the carried meeting and takes it there.
  */
 #include "continuous.h"
 
@@ -69,6 +87,10 @@
  * of the threshold of "into" and this much of the static body's
  * half-width (for a wall thinner than the body, half-way to its middle) */
 #define CR_CENTRE_DEPTH 0.5f
+/* the centre's way as seen from a turning kinematic body: straight
+ * pieces (over a turn of 1.7 rad, a piece's middle is within 0.5 % of
+ * the way's radius of the curve) */
+#define CR_TURNING_PIECES 8
 /* |angle| <= pi/2 * chord for |angle| <= pi: a bound of the turn from
  * its chord |q1 - q0|, without the arctangent */
 #define CR_HALF_PI 1.57079632679489662f
@@ -141,16 +163,14 @@ static int cr_went_through(const cr_shape *sd, cr_v2 xt, cr_v2 x, cr_rot q,
  * the wall nor wholly past the face it met. A path bent round S within
  * the step (a bounce) keeps the centre on the outer side of the face it
  * met, and so does its straight way. */
-static int cr_centre_through(const cr_shape *ss, cr_v2 xs, cr_rot qs, cr_v2 p0, cr_v2 p1,
-                             float depth)
+static int cr_centre_through_local(const cr_shape *ss, cr_v2 a, cr_v2 d, float depth,
+                                   int from_outside)
 {
 #if CAROM_ENABLE_POLYGONS
     if (!CR_KIND_CIRCLE(ss->kind)) {
-        /* clip the way to S's faces moved in by depth, in S's frame */
-        cr_v2 a = cr_inv_rotate(qs, cr_vsub(p0, xs));
-        cr_v2 d = cr_inv_rotate(qs, cr_vsub(p1, p0));
+        /* clip the way to S's faces moved in by depth */
         float lo = 0.0f, hi = 1.0f;
-        int k, outside = 0;
+        int k, outside = !from_outside;
         for (k = 0; k < ss->count; ++k) {
             /* g(f) = n.(a + f d) - n.v + depth: inside while g <= 0 */
             float h0 = cr_sub(cr_vdot(ss->norms[k], a), cr_vdot(ss->norms[k], ss->verts[k]));
@@ -171,12 +191,11 @@ static int cr_centre_through(const cr_shape *ss, cr_v2 xs, cr_rot qs, cr_v2 p0, 
     }
 #endif
     {
-        /* a static circle: the way's nearest point to its centre, within
-         * its radius less depth, from outside it */
+        /* a circle: the way's nearest point to its centre, within its
+         * radius less depth */
         float r = cr_sub(ss->radius, depth), dd, f;
-        cr_v2 a = cr_vsub(p0, xs), d = cr_vsub(p1, p0), c;
-        (void)qs;
-        if (!cr_gt(cr_vlen2(a), cr_mul(ss->radius, ss->radius)))
+        cr_v2 c;
+        if (from_outside && !cr_gt(cr_vlen2(a), cr_mul(ss->radius, ss->radius)))
             return 0;
         dd = cr_vlen2(d);
         if (!cr_gt(dd, 0.0f))
@@ -186,6 +205,64 @@ static int cr_centre_through(const cr_shape *ss, cr_v2 xs, cr_rot qs, cr_v2 p0, 
         return cr_lt(cr_vlen2(c), cr_mul(r, r));
     }
 }
+
+static int cr_centre_through(const cr_shape *ss, cr_v2 xs, cr_rot qs, cr_v2 p0, cr_v2 p1,
+                             float depth)
+{
+#if CAROM_ENABLE_POLYGONS
+    if (!CR_KIND_CIRCLE(ss->kind))
+        return cr_centre_through_local(ss, cr_inv_rotate(qs, cr_vsub(p0, xs)),
+                                       cr_inv_rotate(qs, cr_vsub(p1, p0)), depth, 1);
+#endif
+    (void)qs;
+    return cr_centre_through_local(ss, cr_vsub(p0, xs), cr_vsub(p1, p0), depth, 1);
+}
+
+#if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
+/* Whether point p, in S's frame, lies outside S. */
+static int cr_local_outside(const cr_shape *ss, cr_v2 p)
+{
+#if CAROM_ENABLE_POLYGONS
+    if (!CR_KIND_CIRCLE(ss->kind)) {
+        int k;
+        for (k = 0; k < ss->count; ++k)
+            if (cr_gt(cr_vdot(ss->norms[k], cr_vsub(p, ss->verts[k])), 0.0f))
+                return 1;
+        return 0;
+    }
+#endif
+    return cr_gt(cr_vlen2(p), cr_mul(ss->radius, ss->radius));
+}
+
+/* The same against a kinematic body S that turns: the centre's way as
+ * seen from S, from the meeting at toi to the step's end, is a curve (a
+ * body leaving a spinning blade goes round its tip in the blade's
+ * frame, and the straight way would cut through the blade), followed in
+ * CR_TURNING_PIECES straight pieces from where the meeting is outside S. */
+static int cr_centre_through_turning(const cr_shape *ss, const cr_body *S0, const cr_body *path,
+                                     const cr_drift *still, float toi, float dt, float depth)
+{
+    float h = cr_div(cr_sub(dt, toi), (float)CR_TURNING_PIECES);
+    cr_v2 prev, xb, xs;
+    cr_rot qb, qs;
+    int k;
+    cr_pose_at(path, still, toi, &xb, &qb);
+    cr_pose_at(S0, still, toi, &xs, &qs);
+    prev = cr_inv_rotate(qs, cr_vsub(xb, xs));
+    if (!cr_local_outside(ss, prev))
+        return 0; /* (the meeting's centre already in S) */
+    for (k = 1; k <= CR_TURNING_PIECES; ++k) {
+        cr_v2 cur;
+        cr_pose_at(path, still, cr_add(toi, cr_mul((float)k, h)), &xb, &qb);
+        cr_pose_at(S0, still, cr_add(toi, cr_mul((float)k, h)), &xs, &qs);
+        cur = cr_inv_rotate(qs, cr_vsub(xb, xs));
+        if (cr_centre_through_local(ss, prev, cr_vsub(cur, prev), depth, 0))
+            return 1;
+        prev = cur;
+    }
+    return 0;
+}
+#endif
 
 /* Whether the body at (x, q), overlapping static body S (sep1 < 0),
  * would be pushed out of S's far side: S's least way out for it points
@@ -216,18 +293,29 @@ static int cr_out_far_side(const cr_shape *sd, cr_v2 x, cr_rot q, const cr_shape
  * above a floor for 2 s, falling at 22 m/s). Against a body that cannot
  * move, one frictionless impulse with e <= 1 takes energy or keeps it.
  */
-static void cr_meet_static(carom_world *w, int i, int s, const cr_manifold *m)
+static void cr_meet_static(carom_world *w, int i, int s, const cr_manifold *m, int moving,
+                           cr_v2 centre)
 {
     cr_body *b = &w->bodies[i];
+    const cr_body *K = &w->bodies[s];
     float e = cr_max(w->info[i].restitution, w->info[s].restitution);
     float rest = cr_rest_speed(w, i, s);
     int pass, k;
+    (void)K;
+    (void)moving;
+    (void)centre;
     for (pass = 0; pass < 2 * m->count; ++pass) {
         int worst = -1;
         float vn_worst = 0.0f;
         for (k = 0; k < m->count; ++k) {
             cr_v2 r = cr_vsub(m->pts[k].p, b->x);
-            float vn = cr_vdot(cr_vadd(b->v, cr_vcross_sv(b->w, r)), m->n);
+            cr_v2 v = cr_vadd(b->v, cr_vcross_sv(b->w, r));
+            float vn;
+#if CAROM_ENABLE_KINEMATIC
+            if (moving) /* relative to the kinematic body's point there */
+                v = cr_vsub(v, cr_vadd(K->v, cr_vcross_sv(K->w, cr_vsub(m->pts[k].p, centre))));
+#endif
+            vn = cr_vdot(v, m->n);
             if (cr_lt(vn, vn_worst)) {
                 worst = k;
                 vn_worst = vn;
@@ -253,6 +341,10 @@ static void cr_meet_static(carom_world *w, int i, int s, const cr_manifold *m)
      * spin kept: no energy made) */
     {
         float vn = cr_vdot(b->v, m->n);
+#if CAROM_ENABLE_KINEMATIC
+        if (moving)
+            vn = cr_sub(vn, cr_vdot(cr_vadd(K->v, cr_vcross_sv(K->w, cr_vsub(b->x, centre))), m->n));
+#endif
         if (cr_lt(vn, 0.0f)) {
             float target = cr_gt(cr_neg(vn), rest) ? cr_mul(e, cr_neg(vn)) : 0.0f;
             b->v = cr_vmadd(b->v, cr_sub(target, vn), m->n);
@@ -283,21 +375,138 @@ static int cr_may_be_fast(const carom_world *w, int i, float dt)
     return 0;
 }
 
-/* Body i swept against static body s over the step; 1 if it was put back. */
+/* The turn q1 q0^-1 from rotation q0 to q1. */
+static cr_rot cr_turn_between(cr_rot q0, cr_rot q1)
+{
+    return cr_r(cr_add(cr_mul(q1.c, q0.c), cr_mul(q1.s, q0.s)),
+                cr_sub(cr_mul(q1.s, q0.c), cr_mul(q1.c, q0.s)));
+}
+
+/* The turn r the shorter way round, then the whole turns a spin of
+ * `spun` radians over the step made besides (the turn nearest it): a rod
+ * spinning 8 turns a step is swept on its spin, so that where it meets
+ * the static body its tip is coming down. */
+static float cr_path_turn(cr_rot r, float spun)
+{
+    float turn = cr_rot_angle(r);
+    float turns = cr_mul(cr_sub(spun, turn), CR_INV_TWO_PI);
+    float whole = (float)(long)(cr_ge(turns, 0.0f) ? cr_add(turns, 0.5f) : cr_sub(turns, 0.5f));
+    if (cr_lt(cr_abs(turns), CR_MAX_TURNS))
+        turn = cr_add(turn, cr_mul(whole, CR_TWO_PI));
+    return turn;
+}
+
+#if CAROM_ENABLE_KINEMATIC
+/*
+ * Body i met kinematic body s at pose (xm, qm), the manifold m, while s's
+ * centre was at xs, with rest_of_step left of the step: it takes the
+ * impulse there (s's velocity at that time) and flies on ballistically
+ * to the step's end, as a body a wall sweeps on. Kept if it then lies
+ * clear of s's end pose (1); otherwise (a turning body that catches it
+ * up again: an inelastic body leaving a blade's face straight while the
+ * face turns after it) its velocity is put back as it was (0).
+ */
+static int cr_fly_off(carom_world *w, int i, int s, cr_v2 xm, cr_rot qm, const cr_manifold *m,
+                      cr_v2 xs, float rest_of_step)
+{
+    cr_body *b = &w->bodies[i];
+    const cr_body *S = &w->bodies[s];
+    cr_v2 v = b->v, x;
+    float spin = b->w;
+    cr_rot q;
+#if CAROM_ENABLE_COMPENSATED
+    cr_v2 vc = b->vc;
+    float wc = b->wc;
+#endif
+    b->x = xm;
+    b->q = qm;
+    cr_meet_static(w, i, s, m, 1, xs);
+    x = cr_vadd(xm, cr_drift_offset(b->v, b->a, rest_of_step));
+#if CAROM_ENABLE_ROTATION
+    q = cr_rot_advance(qm, cr_drift_angle(b->w, b->alpha, rest_of_step));
+#else
+    q = qm;
+#endif
+    if (cr_lt(cr_separation(&w->info[s].shape, S->x, S->q, &w->info[i].shape, x, q),
+              cr_neg(w->scale.slop))) {
+        b->v = v;
+        b->w = spin;
+#if CAROM_ENABLE_COMPENSATED
+        b->vc = vc;
+        b->wc = wc;
+#endif
+        return 0;
+    }
+    b->x = x;
+    b->q = q;
+    cr_add_velocity(b, cr_vscale(rest_of_step, b->a));
+#if CAROM_ENABLE_ROTATION
+    cr_add_angular(b, cr_mul(rest_of_step, b->alpha));
+#endif
+    return 1;
+}
+#endif
+
+/* What the guard holds bodies against: static bodies and kinematic
+ * ones, which no impulse moves either. */
+static int cr_is_wall(const cr_body *b)
+{
+#if CAROM_ENABLE_KINEMATIC
+    if (b->type == CAROM_BODY_KINEMATIC)
+        return 1;
+#endif
+    return b->type == CAROM_BODY_STATIC;
+}
+
+/*
+ * Body i swept against body s, static or kinematic, over the step; 1 if
+ * it was put back. A kinematic body moves on uniformly through the step
+ * (its start pose in w->backup, its end pose in w->bodies): the body's
+ * path is swept against its path, the tests below are made in its end
+ * pose with the meeting carried along with it (the meeting pose, the
+ * normal and the points, moved rigidly from where it was at the meeting
+ * to where it ends), and the impulse answers the approach relative to
+ * its points.
+ */
 static int cr_sweep_static(carom_world *w, int i, int s, float dt)
 {
     const cr_body *b0 = &w->backup[i];
     cr_body *b1 = &w->bodies[i], path;
-    const cr_body *S = &w->bodies[s];
+    const cr_body *S = &w->bodies[s], *S0 = S; /* its end pose; start pose */
     const cr_shape *sd = &w->info[i].shape, *ss = &w->info[s].shape;
     float slop = w->scale.slop, tol = cr_mul(CAROM_TOI_TOLERANCE, slop), inv_dt;
-    float turn = 0.0f, toi = 0.0f, sep0, sep1, thr;
-    cr_v2 dx = cr_vsub(b1->x, b0->x), xt;
-    cr_rot qt;
+    float turn = 0.0f, toi = 0.0f, sep0, sep1, thr, rest_of_step;
+    cr_v2 dx = cr_vsub(b1->x, b0->x), xt, xs;
+    cr_rot qt, qs;
     cr_drift still;
     cr_mover A, B;
     cr_manifold m;
+#if CAROM_ENABLE_KINEMATIC
+    cr_v2 xm = cr_v(0.0f, 0.0f); /* a kinematic body's meeting, not carried */
+    cr_rot qm = cr_rot_identity();
+    cr_manifold mm;
+    mm.count = 0;
+#endif
+    int moving = 0;
 
+#if CAROM_ENABLE_KINEMATIC
+    if (S->type == CAROM_BODY_KINEMATIC && cr_body_moves(S)) {
+        /* fast against the kinematic body: its motion as seen from it */
+        cr_v2 l0, l1;
+        float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
+        float spun = cr_mul(cr_mul(0.5f, cr_add(b0->w, b1->w)), dt);
+        int turns = CAROM_ENABLE_ROTATION && !CR_KIND_CIRCLE(sd->kind);
+        S0 = &w->backup[s];
+        moving = 1;
+        l0 = cr_inv_rotate(S0->q, cr_vsub(b0->x, S0->x));
+        l1 = cr_inv_rotate(S->q, cr_vsub(b1->x, S->x));
+        if (!cr_gt(cr_vlen(cr_vsub(l1, l0)), limit) &&
+            !(turns && cr_gt(cr_mul(sd->extent, cr_abs(cr_sub(spun, cr_mul(S->w, dt)))), limit)))
+            return 0;
+        if (turns)
+            turn = cr_path_turn(cr_turn_between(b0->q, b1->q), spun);
+    } else
+#endif
     if (CR_KIND_CIRCLE(sd->kind) || !CAROM_ENABLE_ROTATION) {
         /* a circle's surface is where it is, however it turns (squared:
          * no root for the many bodies that move little) */
@@ -310,8 +519,7 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
         /* the turn from the start pose to the end pose, q1 q0^-1, bounded
          * first by its chord |q1 - q0| (no arctangent for the many bodies
          * that turn little) */
-        cr_rot r = cr_r(cr_add(cr_mul(b1->q.c, b0->q.c), cr_mul(b1->q.s, b0->q.s)),
-                        cr_sub(cr_mul(b1->q.s, b0->q.c), cr_mul(b1->q.c, b0->q.s)));
+        cr_rot r = cr_turn_between(b0->q, b1->q);
         float chord = cr_vlen(cr_v(cr_sub(b1->q.c, b0->q.c), cr_sub(b1->q.s, b0->q.s)));
         float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
         float move = cr_vlen(dx);
@@ -320,18 +528,7 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
             !cr_gt(cr_mul(sd->extent, cr_mul(CR_HALF_PI, chord)), limit) &&
             !cr_gt(cr_mul(sd->extent, cr_abs(spun)), limit))
             return 0; /* moves too little to outrun its contacts */
-        /* the turn the shorter way round, then the whole turns its spin
-         * made besides (the turn nearest its mean spin times dt): a rod
-         * spinning 8 turns a step is swept on its spin, so that where it
-         * meets the static body its tip is coming down */
-        turn = cr_rot_angle(r);
-        {
-            float turns = cr_mul(cr_sub(spun, turn), CR_INV_TWO_PI);
-            float whole = (float)(long)(cr_ge(turns, 0.0f) ? cr_add(turns, 0.5f)
-                                                            : cr_sub(turns, 0.5f));
-            if (cr_lt(cr_abs(turns), CR_MAX_TURNS))
-                turn = cr_add(turn, cr_mul(whole, CR_TWO_PI));
-        }
+        turn = cr_path_turn(r, spun);
         if (!cr_gt(cr_add(move, cr_mul(sd->extent, cr_abs(turn))), limit))
             return 0;
     }
@@ -348,7 +545,7 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     still.v_pre = cr_v(0.0f, 0.0f);
     still.w_pre = 0.0f;
     A.s = ss;
-    A.b = S;
+    A.b = S0; /* (a kinematic body: its start pose and its motion) */
     A.d = &still;
     B.s = sd;
     B.b = &path;
@@ -358,7 +555,9 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
      * leaving the touching point as a graze while the body's centre went
      * on in: a spinning splinter crept through a wall, a few slops a
      * step) */
-    sep0 = cr_separation(ss, S->x, S->q, sd, b0->x, b0->q);
+    sep0 = cr_separation(ss, S0->x, S0->q, sd, b0->x, b0->q);
+    xs = S0->x;
+    qs = S0->q;
     if (cr_le(sep0, tol)) {
         xt = b0->x;
         qt = b0->q;
@@ -366,23 +565,52 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
         if (!cr_time_of_impact(&A, &B, 0.0f, dt, tol, &toi))
             return 0;
         cr_pose_at(&path, &still, toi, &xt, &qt);
+#if CAROM_ENABLE_KINEMATIC
+        if (moving)
+            cr_pose_at(S0, &still, toi, &xs, &qs);
+#endif
     }
     /* where it met: the normal from the static body towards it */
-    sep0 = cr_separation(ss, S->x, S->q, sd, xt, qt);
+    sep0 = cr_separation(ss, xs, qs, sd, xt, qt);
     if (!cr_finite(sep0) ||
-        !cr_collide(ss, S->x, S->q, sd, xt, qt, cr_add(cr_max(sep0, 0.0f), cr_add(tol, slop)),
+        !cr_collide(ss, xs, qs, sd, xt, qt, cr_add(cr_max(sep0, 0.0f), cr_add(tol, slop)),
                     w->scale.face_tol, &m))
         return 0;
+#if CAROM_ENABLE_KINEMATIC
+    if (moving) {
+        /* the meeting carried along with the kinematic body to its end
+         * pose (by its turn since, u = q_end q_meet^-1, about its centre),
+         * where the tests below are made; the meeting itself is kept */
+        cr_rot u = cr_turn_between(qs, S->q);
+        int k;
+        xm = xt;
+        qm = qt;
+        mm = m;
+        xt = cr_vadd(S->x, cr_rotate(u, cr_vsub(xt, xs)));
+        qt = cr_rot_mul(u, qt);
+        m.n = cr_rotate(u, m.n);
+        for (k = 0; k < m.count; ++k)
+            m.pts[k].p = cr_vadd(S->x, cr_rotate(u, cr_vsub(m.pts[k].p, xs)));
+    }
+#endif
     sep1 = cr_separation(ss, S->x, S->q, sd, b1->x, b1->q);
     thr = cr_max(cr_mul(CR_THROUGH_SLOPS, slop), cr_mul(CR_THROUGH_WIDTH, sd->half_width));
+#if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
+    if (moving && !cr_eq(S->w, 0.0f)) {
+        /* a turning kinematic body: the ways as seen from it are curves */
+        if (!cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) &&
+            !cr_out_far_side(sd, b1->x, b1->q, ss, S, sep1, slop, w->scale.face_tol, m.n) &&
+            !cr_centre_through_turning(ss, S0, &path, &still, toi, dt,
+                                       cr_min(thr, cr_mul(CR_CENTRE_DEPTH, ss->half_width))))
+            return 0;
+    } else
+#endif
     if (!cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) &&
         !cr_went_through(sd, xt, b1->x, b1->q, ss, S->x, S->q, m.n) &&
         !cr_out_far_side(sd, b1->x, b1->q, ss, S, sep1, slop, w->scale.face_tol, m.n) &&
         !cr_centre_through(ss, S->x, S->q, xt, b1->x,
                            cr_min(thr, cr_mul(CR_CENTRE_DEPTH, ss->half_width))))
         return 0;
-    b1->x = xt;
-    b1->q = qt;
 #if CAROM_ENABLE_COMPENSATED
     b1->xc = cr_v(0.0f, 0.0f);
 #endif
@@ -390,14 +618,18 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
      * given it over the rest of the step (kept, a body falling onto a
      * floor would gain g (dt - toi) |v_y| of kinetic energy a unit mass,
      * 2e-4 of it at 1000 m/s, with no fall to pay for it) */
-    {
-        float rest_of_step = cr_sub(dt, toi);
-        cr_add_velocity(b1, cr_vscale(cr_neg(rest_of_step), b1->a));
+    rest_of_step = cr_sub(dt, toi);
+    cr_add_velocity(b1, cr_vscale(cr_neg(rest_of_step), b1->a));
 #if CAROM_ENABLE_ROTATION
-        cr_add_angular(b1, cr_mul(cr_neg(rest_of_step), b1->alpha));
+    cr_add_angular(b1, cr_mul(cr_neg(rest_of_step), b1->alpha));
 #endif
-    }
-    cr_meet_static(w, i, s, &m);
+#if CAROM_ENABLE_KINEMATIC
+    if (moving && cr_fly_off(w, i, s, xm, qm, &mm, xs, rest_of_step))
+        return 1;
+#endif
+    b1->x = xt;
+    b1->q = qt;
+    cr_meet_static(w, i, s, &m, moving, S->x);
     return 1;
 }
 
@@ -415,7 +647,7 @@ static int cr_escape_static(void *ctx, int other)
 {
     cr_escape_sweep *e = (cr_escape_sweep *)ctx;
     const cr_body *S = &e->w->bodies[other];
-    if (S->type == CAROM_BODY_STATIC && !(S->flags & CR_BODY_SENSOR) &&
+    if (cr_is_wall(S) && !(S->flags & CR_BODY_SENSOR) &&
         cr_may_touch(e->w, e->body, other) && cr_sweep_static(e->w, e->body, other, e->dt))
         ++e->w->stats.continuous_stops;
     return 1;
@@ -489,10 +721,10 @@ void cr_continuous_statics(carom_world *w, float dt)
         const cr_pair *p = &w->pairs[k];
         const cr_body *A = &w->bodies[p->a], *B = &w->bodies[p->b];
         int i, s;
-        if (A->type == CAROM_BODY_STATIC && B->type == CAROM_BODY_DYNAMIC) {
+        if (cr_is_wall(A) && B->type == CAROM_BODY_DYNAMIC) {
             s = p->a;
             i = p->b;
-        } else if (B->type == CAROM_BODY_STATIC && A->type == CAROM_BODY_DYNAMIC) {
+        } else if (cr_is_wall(B) && A->type == CAROM_BODY_DYNAMIC) {
             s = p->b;
             i = p->a;
         } else {

@@ -1882,11 +1882,11 @@ static int cmd_lean(int argc, char **argv)
                                    "propagation", (double)s.world.gravity.x,
                     (double)s.world.gravity.y);
     if (n.stats.continuous_stops > 0)
-        lean_switch("CONTINUOUS", 1, "a body went into or through a static body and was put "
+        lean_switch("CONTINUOUS", 1, "a body went into or through a static or kinematic body and was put "
                                      "back where it met it, %ld time%s",
                     n.stats.continuous_stops, n.stats.continuous_stops == 1 ? "" : "s");
     else
-        lean_switch("CONTINUOUS", 0, "no body went into or through a static body: the guard "
+        lean_switch("CONTINUOUS", 0, "no body went into or through a static or kinematic body: the guard "
                                      "never acted; turn on if bodies may spin faster than the "
                                      "contact solver follows, or be driven past their boxes");
     if (s.body_count <= LEAN_GRID_MAX_BODIES)

@@ -183,7 +183,7 @@ wake="cr_island_wake_touched cr_island_wake"
 profile_api="carom_op_weights_preset cr_presets carom_op_name carom_phase_name cr_op_names cr_phase_names carom_profile_cost carom_profile_reset"
 block="cr_lcp2"
 trig="carom_rot_from_angle carom_rot_angle"
-continuous="cr_continuous_statics cr_continuous_escapes cr_escape_check cr_may_be_fast cr_escape_static cr_box_holds cr_sweep_static cr_meet_static cr_went_through cr_reach_along"
+continuous="cr_continuous_statics cr_continuous_escapes cr_escape_check cr_may_be_fast cr_escape_static cr_box_holds cr_is_wall cr_sweep_static cr_turn_between cr_path_turn cr_meet_static cr_fly_off cr_went_through cr_overlap_across cr_out_far_side cr_centre_through cr_centre_through_local cr_centre_through_turning cr_local_outside cr_reach_along"
 edits="carom_world_remove_body carom_body_set_velocity carom_body_set_angular_velocity carom_body_set_transform carom_body_apply_impulse carom_body_apply_angular_impulse carom_body_apply_force carom_body_apply_torque carom_body_set_restitution carom_body_set_friction carom_body_set_filter carom_body_set_force cr_wake_neighbours cr_forget_body"
 # code_list "NAME ...": `NAME`, `NAME` ... for the document
 code_list() { echo "$1" | awk '{ for (i = 1; i <= NF; i++) printf "%s`%s`", (i > 1 ? ", " : ""), $i }'; }
@@ -338,7 +338,7 @@ in); the rows after them are proposals:
 | \`CAROM_ENABLE_STATUS_NAMES\` | the text of \`carom_status_string\` (one generic string left) | always, unless the program prints statuses | - | - | - |
 | \`CAROM_ENABLE_GRID\` | the broadphase grid (every pair of boxes is tested instead) | up to 64 bodies | - | - | - |
 | \`CAROM_ENABLE_BODY_EDITS\` | removing bodies and the \`carom_body_set_*\` / \`carom_body_apply_*\` calls ($(code_list "$edits"), stubs left) | always, unless the program calls them | $(fn_sum "$default_lib" "$edits") | - | - |
-| \`CAROM_ENABLE_CONTINUOUS\` | the step's continuous guard against static bodies ($(code_list "$continuous")) | no body went into or through a static body in the run | $(fn_sum "$default_lib" "$continuous") | - | - |
+| \`CAROM_ENABLE_CONTINUOUS\` | the step's continuous guard against static and kinematic bodies ($(code_list "$continuous")) | no body went into or through a static or kinematic body in the run | $(fn_sum "$default_lib" "$continuous") | - | - |
 | \`CAROM_ENABLE_ANGLES\` | the angle helpers ($(code_list "$trig")), with \`CAROM_ENABLE_CONTINUOUS\` off too the arctangent (\`cr_rot_angle\`), and with rotation off carom's sine and cosine (\`cr_rot_from_angle\`) | rotation off and every body at angle 0 | $(fn_sum "$default_lib" "$trig cr_rot_from_angle") | - | - |
 | (circles only) the two-point block solve | \`cr_lcp2\` and its callers' block branches: compiled only when a contact can have two points (polygons) | with \`CAROM_ENABLE_POLYGONS\` | $(fn_sum_or_inline "$default_lib" "$block") | - | - |
 | (not possible) the quartic time of impact without gravity and forces | $(code_list "$quartic") | never: a solved contact's impulse is spread over its substep as an acceleration (\`cr_solver_set_drifts\`), so bodies touching others accelerate even then | $(fn_sum "$default_lib" "$quartic") | $(fn_sum "$cradle_lib" "$quartic") | $(fn_sum "$gas_lib" "$quartic") |
