@@ -25,6 +25,10 @@
 #define CR_BODY_REGROWN 128u /* its box grew during this step (an impact):
                                 the grid filed it by its first box, so it
                                 counts as escaped (queries, sensors) */
+#define CR_BODY_CARRIED 256u /* the continuous guard put it back against a
+                                kinematic body in this step: its end pose
+                                is the guard's, not a path to sweep again
+                                (set and cleared within the guard) */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

@@ -400,6 +400,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->touch_event_count = 0;
     w->touch_events_dropped = 0;
     w->grid_valid = 0;
+    w->carried_count = 0;
     w->escaped_count = 0;
     w->sensor_count = 0;
     w->active = CR_AT(active, int);

@@ -194,6 +194,8 @@ struct carom_world {
      * regrown[0 .. escaped_count) (free between steps) and flagged
      * CR_BODY_ESCAPED */
     int grid_valid;
+    int carried_count; /* continuous guard: bodies flagged CR_BODY_CARRIED
+                          in this step (cleared within it) */
     int escaped_count;
     int sensor_count;         /* sensor bodies in the world */
 
