@@ -253,7 +253,7 @@ help:
 	@echo ""
 	@echo "run and report"
 	@echo "  make run             run SCENE (default $(SCENE)): impacts, final state, operation counts"
-	@echo "  make validate        carom against Box2D 2.4.1 and exact answers (453 checks): regenerates docs/validation.md (~15 s)"
+	@echo "  make validate        carom against Box2D 2.4.1 and exact answers (466 checks): regenerates docs/validation.md (~15 s)"
 	@echo "  make bench           carom's methods against Box2D 2.4.1 (and v3 with B2V3_DIR=) at 10^2..10^5 bodies: docs/benchmarks.md, docs/bench-*.png (~10 min)"
 	@echo "  make bench-quick     the same at 10^2 and 10^3 bodies, report under $(BUILD)/bench/ (~1 min)"
 	@echo "  make bench-build     $(BUILD)/carom-bench and $(BUILD)/carom-bench-ops only"

@@ -60,6 +60,12 @@ static int fits_bullet(const vscene *s, char *why, size_t n)
     return bullet_fit(s, &b, why, n);
 }
 
+static int fits_blade(const vscene *s, char *why, size_t n)
+{
+    blade b;
+    return blade_fit(s, &b, why, n);
+}
+
 static int fits_drop(const vscene *s, char *why, size_t n)
 {
     drop d;
@@ -328,6 +334,29 @@ static double m_bullet_dx(const vscene *s, int a, int b, char *why, size_t n)
     return e.dx;
 }
 
+static double blade_value(const vscene *s, int a, int what, char *why, size_t n)
+{
+    blade bl;
+    blade_err e;
+    const run *r = need_run(s, a, why, n);
+    if (!r || blade_fit(s, &bl, why, n) != 0)
+        return V_NAN;
+    blade_measure(&bl, &r->tr, &e);
+    return what == 0 ? e.dx : e.dv;
+}
+
+static double m_blade_dx(const vscene *s, int a, int b, char *why, size_t n)
+{
+    (void)b;
+    return blade_value(s, a, 0, why, n);
+}
+
+static double m_blade_dv(const vscene *s, int a, int b, char *why, size_t n)
+{
+    (void)b;
+    return blade_value(s, a, 1, why, n);
+}
+
 static double m_still_move(const vscene *s, int a, int b, char *why, size_t n)
 {
     still_err e;
@@ -417,6 +446,11 @@ static const quantity quantities[] = {
     {"poly.da", SINGLE, 1, "rad", "the same for the angle", fits_poly, m_poly_da},
     {"bullet.dx", SINGLE, 1, "m", "bullet: largest |x - exact| over all samples, both bodies",
      fits_bullet, m_bullet_dx},
+    {"blade.dx", SINGLE, 1, "m",
+     "blade: largest |ball position - exact| over all samples (at rest, then Newton's "
+     "velocity from the strike)", fits_blade, m_blade_dx},
+    {"blade.dv", SINGLE, 1, "m/s", "blade: |ball velocity - exact| at the end", fits_blade,
+     m_blade_dv},
     {"still.move", SINGLE, 1, "m", "largest distance of a body from where it started",
      fits_any, m_still_move},
     {"energy.rel", SINGLE, 1, "relative",

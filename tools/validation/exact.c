@@ -265,6 +265,87 @@ double bullet_dke(const bullet *bu)
             bu->mw * (bu->vw * bu->vw - bu->uw * bu->uw)) / 2.0;
 }
 
+/* ---- a spinning kinematic blade ---------------------------------------------------------- */
+
+/*
+ * The blade's leading face (it turns counter-clockwise, w > 0) meets the
+ * ball of radius r at distance d from its centre, at polar angle phi,
+ * when the blade's line passes r + h from the ball's centre (h the
+ * blade's half thickness): at angle theta = phi - asin((r + h) / d). The
+ * face point under the ball, rho = sqrt(d^2 - (r + h)^2) from the centre,
+ * moves at w rho along the face's normal n = (-sin theta, cos theta); the
+ * blade cannot be moved, so Newton's law (frictionless, through the
+ * ball's centre) sends the ball off at (1 + e) w rho n.
+ */
+int blade_fit(const vscene *s, blade *b, char *why, size_t n)
+{
+    const scene_body *k, *c;
+    double hx = 0.0, hy = 0.0, px, py, d, r, w, phi, theta, rho, speed;
+    int i;
+    memset(b, 0, sizeof *b);
+    if (s->sc.body_count != 2 || !is_dynamic(s, 1, "circle", why, n)) {
+        if (s->sc.body_count != 2)
+            snprintf(why, n, "has %d bodies, not a blade and a ball", s->sc.body_count);
+        return -1;
+    }
+    k = &s->sc.bodies[0];
+    c = &s->sc.bodies[1];
+    if (strcmp(k->kind, "box") != 0 || k->def.type != CAROM_BODY_KINEMATIC || k->angle != 0.0f ||
+        k->def.velocity.x != 0.0f || k->def.velocity.y != 0.0f ||
+        !(k->def.angular_velocity > 0.0f) || s->gx != 0.0 || s->gy != 0.0 ||
+        c->def.velocity.x != 0.0f || c->def.velocity.y != 0.0f ||
+        c->def.angular_velocity != 0.0f) {
+        snprintf(why, n, "is not a kinematic box at angle 0 spinning counter-clockwise (body 0) "
+                         "and a circle at rest (body 1), without gravity");
+        return -1;
+    }
+    for (i = 0; i < k->def.vertex_count; ++i) {
+        hx = maxd(hx, fabs((double)k->def.vertices[i].x));
+        hy = maxd(hy, fabs((double)k->def.vertices[i].y));
+    }
+    px = (double)c->def.position.x - (double)k->def.position.x;
+    py = (double)c->def.position.y - (double)k->def.position.y;
+    d = sqrt(px * px + py * py);
+    r = (double)c->def.radius;
+    w = (double)k->def.angular_velocity;
+    phi = atan2(py, px);
+    if (!(d > r + hy) || !(phi > 0.0))
+        goto unsupported;
+    theta = phi - asin((r + hy) / d);
+    rho = sqrt(d * d - (r + hy) * (r + hy));
+    if (!(theta > 0.0) || !(rho < hx))
+        goto unsupported;
+    b->e = mixed_e(s, 0, 1);
+    b->mb = s->exact[1].mass;
+    b->ts = theta / w;
+    b->x0 = (double)c->def.position.x;
+    b->y0 = (double)c->def.position.y;
+    speed = (1.0 + b->e) * w * rho;
+    b->vx = -speed * sin(theta);
+    b->vy = speed * cos(theta);
+    return 0;
+unsupported:
+    snprintf(why, n, "has no strike of the blade's face on the ball after t = 0 (the ball "
+                     "within the blade's sweep, above its positive arm)");
+    return -1;
+}
+
+void blade_measure(const blade *b, const trace *tr, blade_err *out)
+{
+    long k;
+    const double *st;
+    memset(out, 0, sizeof *out);
+    for (k = 0; k < tr->samples; ++k) {
+        double t = tr->t[k], h = t > b->ts ? t - b->ts : 0.0;
+        st = TRACE_AT(tr, k, 1);
+        out->dx = maxd(out->dx, hypot(st[SX] - (b->x0 + b->vx * h), st[SY] - (b->y0 + b->vy * h)));
+    }
+    st = TRACE_AT(tr, tr->samples - 1, 1);
+    out->vx = st[SVX];
+    out->vy = st[SVY];
+    out->dv = hypot(st[SVX] - b->vx, st[SVY] - b->vy);
+}
+
 /* ---- the restitution drop ---------------------------------------------------------------- */
 
 int drop_fit(const vscene *s, drop *d, char *why, size_t n)

@@ -199,6 +199,24 @@ int bullet_fit(const vscene *s, bullet *b, char *why, size_t n);
 void bullet_measure(const vscene *s, const bullet *b, const trace *tr, bullet_err *out);
 double bullet_dke(const bullet *b);
 
+/* A kinematic box (body 0) spinning about its centre, at angle 0 at
+ * t = 0, strikes a circle (body 1) at rest with its leading face. */
+typedef struct blade {
+    double ts, e;   /* instant of the strike, restitution */
+    double x0, y0;  /* the ball's centre before */
+    double vx, vy;  /* and its velocity after: (1 + e) w rho n */
+    double mb;      /* the ball's mass */
+} blade;
+
+typedef struct blade_err {
+    double dx; /* largest |position - exact| of the ball over the samples */
+    double dv; /* |velocity - exact| of the ball at the end */
+    double vx, vy; /* its final velocity */
+} blade_err;
+
+int blade_fit(const vscene *s, blade *b, char *why, size_t n);
+void blade_measure(const blade *b, const trace *tr, blade_err *out);
+
 /* Dynamic circles dropped from rest onto a static axis-aligned box:
  * the bounce sequence, until an arrival at or below the rest speed (or
  * e = 0) ends the bouncing. */
