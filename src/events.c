@@ -76,6 +76,12 @@
  * unsettled, and its contacts stay the solver's (CR_CONTACT_UNSETTLED). */
 #define CR_DIRECT_AFTER 8
 #define CR_DIRECT_MIN_PIVOT 1.0e-6f
+/* ... and one with an impulse larger than this many times the momentum
+ * its rows' bodies could need, the sum of m (|v| before the instant + the
+ * largest velocity an unknown lacks): a squeeze with no bounded answer (a body caught
+ * between kinematic blades closing on it), whose nearly singular system
+ * sent a 0.1 g body off at 10^10 m/s */
+#define CR_DIRECT_MAX_GAIN 10.0f
 /* A solve that has stalled stops: after at least CR_STALL_MIN sweeps and
  * twice as many sweeps as it has rows (an impulse crosses a chain of rows,
  * a Newton's cradle, one row per sweep, and the change stays level while
@@ -759,6 +765,7 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
     float *x = w->direct_x;
     int *u = w->direct_u;
     int m = 0, i, j, c;
+    float lack = 0.0f, mass = 0.0f, momentum = 0.0f;
 #define K(i, j) w->direct_k[(i) * M + (j)]
 #define U_ROW(i) (u[i] >> 3)
 #define U_KIND(i) (u[i] & 7)
@@ -810,7 +817,21 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
             cr_unknown_dir(rj, U_KIND(j), &dj, &laj, &lbj);
             K(i, j) = K(j, i) = cr_coupling(w, ri, di, lai, lbi, rj, dj, laj, lbj);
         }
+        lack = cr_max(lack, cr_abs(x[i]));
+        for (j = 0; j < 2; ++j) {
+            int id = j == 0 ? ri->a : ri->b;
+            const cr_body *b = &w->bodies[id];
+            if (b->type == CAROM_BODY_DYNAMIC) {
+                mass = cr_add(mass, w->info[id].m);
+                /* (its velocity before the instant: the bound stays put
+                 * while the sweeps and solves of the instant go on) */
+                const cr_v2 v0 = w->drift[id].v_pre;
+                momentum = cr_add(momentum, cr_mul(w->info[id].m,
+                                                   cr_add(cr_abs(v0.x), cr_abs(v0.y))));
+            }
+        }
     }
+    momentum = cr_mul(CR_DIRECT_MAX_GAIN, cr_add(momentum, cr_mul(mass, lack)));
     /* Gaussian elimination with partial pivoting; a (nearly) singular
      * system (redundant rows) is left to the sweeps */
     for (c = 0; c < m; ++c) {
@@ -851,6 +872,10 @@ static int cr_rows_direct(carom_world *w, cr_impact_row *rows, int n)
             s = cr_sub(s, cr_mul(K(i, j), x[j]));
         x[i] = cr_div(s, K(i, i));
     }
+    /* bounded? */
+    for (i = 0; i < m; ++i)
+        if (!cr_le(cr_abs(x[i]), momentum))
+            return 0;
     /* feasible? normal impulses stay pushing, friction within its cone */
     for (i = 0; i < m; ++i) {
         const cr_impact_row *r = &rows[U_ROW(i)];

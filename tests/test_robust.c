@@ -317,6 +317,70 @@ START_TEST(test_finding_tiny_masses_sizes_and_steps_are_refused)
 }
 END_TEST
 
+/* A random scene of the kinematic-rotor hunt (2026-11-28; reduced): three
+ * kinematic rotors crossing one another in a 0.5 m box, and 0.1 g
+ * bodies caught between them. An impact instant's rows, a body held
+ * between two blades closing on it, made a nearly singular system whose
+ * exact solve sent a body off at 10^10 m/s, and the step failed with
+ * CAROM_ERR_OUT_OF_RANGE at step 96 (of the 100 run here). A solve
+ * whose impulses exceed ten times the momentum its bodies could need is
+ * now left to the sweeps: every state finite, status OK. */
+START_TEST(test_finding_bodies_between_crossing_kinematic_rotors_stay_finite)
+{
+    static const char *const text =
+        "carom-scene 1\n"
+        "world gravity=0,0 dt=0.0333333333 steps=240 substeps=8 sleep=off\n"
+        "body box static half-extents=0.247198887,0.000530957125 position=0,-0.17777712"
+        "5 restitution=0.7 friction=0.3\n"
+        "body box static half-extents=0.247198887,0.000530957125 position=0,0.177777125"
+        " restitution=0.7 friction=0\n"
+        "body box static half-extents=0.000530957125,0.178308083 position=-0.247198887,"
+        "0 restitution=0.7 friction=0.8\n"
+        "body box static half-extents=0.000530957125,0.178308083 position=0.247198887,0"
+        " restitution=0 friction=0.3\n"
+        "body box kinematic half-extents=0.059587893,0.00963484726 position=0.098004745"
+        "6,0.0572658337 angle=-1.79864575 angular-velocity=-6.88741528 restitution=0.7 "
+        "friction=0.8\n"
+        "body box kinematic half-extents=0.0492229481,0.00816571581 position=0.11303955"
+        "3,0.0383380007 angle=-1.20630333 angular-velocity=8.55445539 restitution=0 fri"
+        "ction=0.3\n"
+        "body box kinematic half-extents=0.0782520349,0.00467002638 position=0.05234391"
+        "96,0.00347292923 angle=0.599580901 angular-velocity=141.598246 restitution=0.7"
+        " friction=0.8\n"
+        "body polygon vertices=0.0105805748,0.0129954405;-0.0059640942,0.0156607668;-0."
+        "016544669,0.0026653263;-0.0105805748,-0.0129954405;0.0059640942,-0.0156607668;"
+        "0.016544669,-0.0026653263 position=-0.135609727,-0.0758012767 velocity=0.25529"
+        "9131,-0.976474078 density=9.3693449 restitution=1 friction=0\n"
+        "body polygon vertices=-0.00511203529,0.00142170702;0.00132478325,-0.0051380059"
+        "3;0.00378725204,0.00371629892 position=-0.202514086,0.0507227266 velocity=0.04"
+        "4520892,0.149264682 density=7.7510192 restitution=0 friction=0\n"
+        "body box half-extents=0.011719095,0.0100053235 angle=-1.19152433 position=-0.1"
+        "45707785,-0.026672654 velocity=-0.0228158198,0.0172537074 density=0.269519295 "
+        "restitution=0.7 friction=0.8\n"
+        "body circle radius=0.00520130369 position=0.238170979,0.0141171674 velocity=-0"
+        ".0053565606,-0.00257407725 density=0.307882744 restitution=1 friction=0\n"
+        "body polygon vertices=0.00374728145,-0.00858911905;0.00858911905,0.00374728145"
+        ";-0.00374728145,0.00858911905;-0.00858911905,-0.00374728145 position=-0.045283"
+        "4813,0.036718226 velocity=-0.0860619109,0.0506612637 density=51.8407495 restit"
+        "ution=0.3 friction=0\n"
+        "body circle radius=0.00599596545 position=-0.0631127422,0.0437664967 velocity="
+        "0.0216448331,-0.113706666 density=1.13810144 restitution=0.3 friction=0.8\n"
+        "body polygon vertices=-0.00329456213,0.00413718456;-0.00528870702,3.69998882e-"
+        "06;-0.00330034766,-0.00413257075;0.0011732408,-0.00515693142;0.00476335501,-0."
+        "00229801755;0.00476656574,0.0022913504;0.00118045525,0.00515528477 position=-0"
+        ".138790507,0.152592315 velocity=-0.0131613128,-0.00642497962 density=0.4919730"
+        "96 restitution=0.7 friction=0\n"
+        "body circle radius=0.00754868528 position=-0.0312880101,0.0831222542 velocity="
+        "-0.145549781,0.102659745 density=0.711537876 restitution=0.7 friction=0\n"
+        "body polygon vertices=-0.006344237,0.00601733181;-0.00203904371,-0.00850293631"
+        ";0.0083832807,0.0024856045 position=-0.045774467,-0.0640496851 velocity=-0.588"
+        "845603,-0.0328879051 density=31.7260656 restitution=0.3 friction=0\n";
+    char msg[256];
+    int rc = run_scene_text(text, CAROM_METHOD_EVENTS, 100, msg, sizeof msg);
+    ck_assert_msg(rc == 0, "rc %d (%s)", rc, rc < 0 ? msg : carom_status_string((carom_status)rc));
+}
+END_TEST
+
 /* A triangle spinning at the largest accepted rate over a static box:
  * the static box never moves, and every state stays finite (or the step
  * fails with a named status, the world unchanged). */
@@ -726,6 +790,7 @@ Suite *suite_robust(void)
     tcase_add_test(tf, test_finding_force_1e38_over_a_static_circle_does_not_crash);
     tcase_add_test(tf, test_finding_tiny_masses_sizes_and_steps_are_refused);
     tcase_add_test(tf, test_finding_fast_spinning_triangle_leaves_static_box_still);
+    tcase_add_test(tf, test_finding_bodies_between_crossing_kinematic_rotors_stay_finite);
     tcase_add_test(tf, test_finding_large_dt_and_gravity_keep_the_ball_on_the_floor);
     tcase_add_test(tf, test_failed_step_is_undone_bit_for_bit);
     tcase_add_test(tf, test_capacity_failure_changes_nothing);
