@@ -167,6 +167,7 @@ struct carom_world {
     float instant_t;          /* time of the last impact instant this step */
     int instant_stamp;        /* mark stamp of the first instant at it */
     int instant_unsettled;    /* an instant at it ended unsettled */
+    int instant_rehits;       /* pairs taken again at it (CR_INSTANT_REHITS) */
     int rows_settled;         /* the island solve settled (cr_rows_solve) */
     int budget_hit;
     int resumed_searches;     /* impact searches resumed this step after an
