@@ -29,9 +29,7 @@
  *   into     at its end pose the body overlaps the static body deeper
  *            than where the path met it, by more than
  *            max(CR_THROUGH_SLOPS slops, CR_THROUGH_WIDTH half-widths):
- *            more than the solver leaves when it stops a body; or deeper
- *            than that threshold in all, and deeper than it started by a
- *            slop (cr_went_in);
+ *            more than the solver leaves when it stops a body;
  *   through  at its end pose the body lies wholly on the static body's
  *            far side along n, and across n the two still overlap there
  *            or where its way first cleared the far side;
@@ -118,18 +116,6 @@ static float cr_reach_along(const cr_shape *s, cr_v2 x, cr_rot q, cr_v2 d)
 #endif
     (void)q;
     return cr_add(cr_vdot(d, x), s->radius);
-}
-
-/* "into": the body, overlapping the static body by -sep0 where its path
- * met it and by -sep1 at its end pose, ended deeper than the meeting by
- * more than thr; or, already overlapping, it ended deeper than thr and
- * deeper than it started by more than a slop (a body hammered into a
- * wall a little more each step, never thr more in one, ratcheted through
- * a 14 cm wall in 8 steps: a 3.3 m ball among kinematic rotors). */
-static int cr_went_in(float sep0, float sep1, float thr, float slop)
-{
-    return cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) ||
-           (cr_lt(sep1, cr_neg(thr)) && cr_lt(sep1, cr_sub(sep0, slop)));
 }
 
 /* Whether the two overlap across n, t = n turned right: on
@@ -694,14 +680,14 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
 #if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
     if (moving && !cr_eq(S->w, 0.0f)) {
         /* a turning kinematic body: the ways as seen from it are curves */
-        if (!cr_went_in(sep0, sep1, thr, slop) &&
+        if (!cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) &&
             !cr_out_far_side(sd, b1->x, b1->q, ss, S, sep1, slop, w->scale.face_tol, m.n) &&
             !cr_centre_through_turning(ss, S0, &path, &still, toi, dt,
                                        cr_min(thr, cr_mul(CR_CENTRE_DEPTH, ss->half_width))))
             return 0;
     } else
 #endif
-    if (!cr_went_in(sep0, sep1, thr, slop) &&
+    if (!cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) &&
         !cr_went_through(sd, xt, b1->x, b1->q, ss, S->x, S->q, m.n) &&
         !cr_out_far_side(sd, b1->x, b1->q, ss, S, sep1, slop, w->scale.face_tol, m.n) &&
         !cr_centre_through(ss, S->x, S->q, xt, b1->x,
