@@ -118,6 +118,27 @@ static float cr_reach_along(const cr_shape *s, cr_v2 x, cr_rot q, cr_v2 d)
     return cr_add(cr_vdot(d, x), s->radius);
 }
 
+/* A drift with no acceleration from local time 0: uniform motion on a
+ * body's velocity (the paths the guard sweeps). */
+static void cr_drift_still(cr_drift *d)
+{
+    d->t = 0.0f;
+    d->a = cr_v(0.0f, 0.0f);
+    d->alpha = 0.0f;
+    d->version = 0;
+    d->v_pre = cr_v(0.0f, 0.0f);
+    d->w_pre = 0.0f;
+}
+
+/* Grow box b to hold box c too. */
+static void cr_box_merge(cr_box *b, const cr_box *c)
+{
+    b->lo_x = cr_min(b->lo_x, c->lo_x);
+    b->lo_y = cr_min(b->lo_y, c->lo_y);
+    b->hi_x = cr_max(b->hi_x, c->hi_x);
+    b->hi_y = cr_max(b->hi_y, c->hi_y);
+}
+
 /* Whether the two overlap across n, t = n turned right: on
  * [-reach(-t), reach(t)] of each. */
 static int cr_overlap_across(const cr_shape *sd, cr_v2 x, cr_rot q, const cr_shape *ss,
@@ -499,12 +520,7 @@ static int cr_fly_off(carom_world *w, int i, int s, cr_v2 xm, cr_rot qm, const c
         path = *b;
         path.v = cr_vscale(cr_div(1.0f, rest_of_step), cr_vsub(x, xm));
         path.w = cr_div(turn, rest_of_step);
-        still.t = 0.0f;
-        still.a = cr_v(0.0f, 0.0f);
-        still.alpha = 0.0f;
-        still.version = 0;
-        still.v_pre = cr_v(0.0f, 0.0f);
-        still.w_pre = 0.0f;
+        cr_drift_still(&still);
         f.w = w;
         f.body = i;
         f.skip = s;
@@ -513,10 +529,7 @@ static int cr_fly_off(carom_world *w, int i, int s, cr_v2 xm, cr_rot qm, const c
         f.h = rest_of_step;
         cr_shape_box(sd, xm, qm, &box);
         cr_shape_box(sd, x, q, &end);
-        box.lo_x = cr_min(box.lo_x, end.lo_x);
-        box.lo_y = cr_min(box.lo_y, end.lo_y);
-        box.hi_x = cr_max(box.hi_x, end.hi_x);
-        box.hi_y = cr_max(box.hi_y, end.hi_y);
+        cr_box_merge(&box, &end);
         (void)cr_broadphase_query(&w->bp, w->boxes, &box, cr_flight_meets, &f);
     }
     if (f.blocked) {
@@ -620,12 +633,7 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     path = *b0;
     path.v = cr_vscale(inv_dt, dx);
     path.w = cr_mul(turn, inv_dt);
-    still.t = 0.0f;
-    still.a = cr_v(0.0f, 0.0f);
-    still.alpha = 0.0f;
-    still.version = 0;
-    still.v_pre = cr_v(0.0f, 0.0f);
-    still.w_pre = 0.0f;
+    cr_drift_still(&still);
     A.s = ss;
     A.b = S0; /* (a kinematic body: its start pose and its motion) */
     A.d = &still;
@@ -764,10 +772,7 @@ static void cr_escape_check(carom_world *w, int i, float dt)
     if (cr_box_holds(g, &end))
         return;
     cr_shape_box(sh, w->backup[i].x, w->backup[i].q, &start);
-    start.lo_x = cr_min(start.lo_x, end.lo_x);
-    start.lo_y = cr_min(start.lo_y, end.lo_y);
-    start.hi_x = cr_max(start.hi_x, end.hi_x);
-    start.hi_y = cr_max(start.hi_y, end.hi_y);
+    cr_box_merge(&start, &end);
     e.w = w;
     e.body = i;
     e.dt = dt;
