@@ -15,9 +15,10 @@
  * meet fewer of these; the discrete method met them all.
  *
  * So, once every body is at its end pose: a dynamic body whose step could
- * carry a point farther than half its half-width (it is "fast": by its
- * translation and, for a polygon, its turn times its extent; Box2D v3
- * takes half the smallest extent too) is swept against each static body
+ * carry a point farther than half the thinner half-width of the two (it
+ * is "fast": by its translation and, for a polygon, its turn times its
+ * extent; Box2D v3 takes half the smallest extent too; the wall's counts
+ * for a body already deep in a thin wall) is swept against each static body
  * of its candidate pairs (and, if it ended outside the box its pairs were
  * found with, against every static body the grid holds around it), along
  * the path from its start pose to its end pose (uniform motion, the turn
@@ -63,7 +64,10 @@
  * impulse at the meeting, relative to the kinematic body's point there,
  * and flies on to the step's end (cr_fly_off), or, if that leaves it in
  * the kinematic body or the flight meets another static or kinematic
- * body, is put at the carried meeting and takes it there.
+ * body, is put at the carried meeting and takes it there. Last, a body
+ * carried or sent flying is swept again, from its start pose to where
+ * it was taken, against the static bodies on its way, with every test
+ * but "into" (cr_continuous_carried): nothing moves a static body.
  */
 #include "continuous.h"
 
@@ -581,14 +585,19 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     mm.count = 0;
 #endif
     int moving = 0;
+    /* fast: the step could carry a point of the body past half the
+     * thinner half-width of the two (a big body already deep in a thin
+     * wall, pushed on by others, crosses the wall's middle with a move
+     * far smaller than its own size, and the wall's far face then
+     * pushes it out) */
+    const float limit = cr_mul(CR_FAST_FRACTION, cr_min(sd->half_width, ss->half_width));
 
 #if CAROM_ENABLE_KINEMATIC
-    if (b1->flags & CR_BODY_CARRIED)
-        return 0; /* (put back against a kinematic body already) */
     if (S->type == CAROM_BODY_KINEMATIC && cr_body_moves(S)) {
+        if (b1->flags & CR_BODY_CARRIED)
+            return 0; /* (put back against a kinematic body already) */
         /* fast against the kinematic body: its motion as seen from it */
         cr_v2 l0, l1;
-        float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
         float spun = cr_mul(cr_mul(0.5f, cr_add(b0->w, b1->w)), dt);
         int turns = CAROM_ENABLE_ROTATION && !CR_KIND_CIRCLE(sd->kind);
         S0 = &w->backup[s];
@@ -605,7 +614,6 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     if (CR_KIND_CIRCLE(sd->kind) || !CAROM_ENABLE_ROTATION) {
         /* a circle's surface is where it is, however it turns (squared:
          * no root for the many bodies that move little) */
-        float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
         if (!cr_gt(cr_vlen2(dx), cr_mul(limit, limit)))
             return 0;
     }
@@ -616,7 +624,6 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
          * that turn little) */
         cr_rot r = cr_turn_between(b0->q, b1->q);
         float chord = cr_vlen(cr_v(cr_sub(b1->q.c, b0->q.c), cr_sub(b1->q.s, b0->q.s)));
-        float limit = cr_mul(CR_FAST_FRACTION, sd->half_width);
         float move = cr_vlen(dx);
         float spun = cr_mul(cr_mul(0.5f, cr_add(b0->w, b1->w)), dt);
         if (!cr_gt(move, limit) &&
@@ -695,7 +702,10 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
             return 0;
     } else
 #endif
-    if (!cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) &&
+    /* a body a kinematic body carried here: only what would take it
+     * through the wall (the contact solver pushes it out of an overlap
+     * from the side it is on; the flight's turn may leave a corner in) */
+    if ((!cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) || (b1->flags & CR_BODY_CARRIED)) &&
         !cr_went_through(sd, xt, b1->x, b1->q, ss, S->x, S->q, m.n) &&
         !cr_out_far_side(sd, b1->x, b1->q, ss, S, sep1, slop, w->scale.face_tol, m.n) &&
         !cr_centre_through(ss, S->x, S->q, xt, b1->x,
@@ -709,10 +719,12 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
      * floor would gain g (dt - toi) |v_y| of kinetic energy a unit mass,
      * 2e-4 of it at 1000 m/s, with no fall to pay for it) */
     rest_of_step = cr_sub(dt, toi);
-    cr_add_velocity(b1, cr_vscale(cr_neg(rest_of_step), b1->a));
+    if (!(b1->flags & CR_BODY_CARRIED)) { /* (a carried body's is taken off) */
+        cr_add_velocity(b1, cr_vscale(cr_neg(rest_of_step), b1->a));
 #if CAROM_ENABLE_ROTATION
-    cr_add_angular(b1, cr_mul(cr_neg(rest_of_step), b1->alpha));
+        cr_add_angular(b1, cr_mul(cr_neg(rest_of_step), b1->alpha));
 #endif
+    }
 #if CAROM_ENABLE_KINEMATIC
     if (moving) {
         b1->flags |= CR_BODY_CARRIED;
@@ -735,13 +747,17 @@ typedef struct cr_escape_sweep {
     carom_world *w;
     int body;
     float dt;
+    int carriers; /* -1: every wall; 0: the walls that hold still */
 } cr_escape_sweep;
+
+static int cr_carries(const cr_body *s);
 
 static int cr_escape_static(void *ctx, int other)
 {
     cr_escape_sweep *e = (cr_escape_sweep *)ctx;
     const cr_body *S = &e->w->bodies[other];
-    if (cr_is_wall(S) && !(S->flags & CR_BODY_SENSOR) &&
+    if (cr_is_wall(S) && (e->carriers < 0 || cr_carries(S) == e->carriers) &&
+        !(S->flags & CR_BODY_SENSOR) &&
         cr_may_touch(e->w, e->body, other) && cr_sweep_static(e->w, e->body, other, e->dt))
         ++e->w->stats.continuous_stops;
     return 1;
@@ -776,6 +792,7 @@ static void cr_escape_check(carom_world *w, int i, float dt)
     e.w = w;
     e.body = i;
     e.dt = dt;
+    e.carriers = -1;
     (void)cr_broadphase_query(&w->bp, w->boxes, &start, cr_escape_static, &e);
 }
 
@@ -804,6 +821,53 @@ static void cr_continuous_escapes(carom_world *w, float dt)
     }
 }
 
+/* Is wall s one the guard carries bodies along with (a moving
+ * kinematic body), rather than holds them at? */
+static int cr_carries(const cr_body *s)
+{
+#if CAROM_ENABLE_KINEMATIC
+    return s->type == CAROM_BODY_KINEMATIC && cr_body_moves(s);
+#else
+    (void)s;
+    return 0;
+#endif
+}
+
+#if CAROM_ENABLE_KINEMATIC
+/*
+ * The bodies a kinematic body carried along or sent flying, held at the
+ * walls that hold still on their way, found in the grid around their
+ * start and end poses (the pair of a body and a static wall is not a
+ * candidate pair when the step's start saw nothing take it there).
+ * Nothing moves a static body: a body crushed between a kinematic
+ * piston and a thin static wall is kept on the wall's near side, and
+ * the piston goes over it (carried along, it was taken out of the
+ * wall's far side, the container's outside).
+ */
+static void cr_continuous_carried(carom_world *w, float dt)
+{
+    int k, j;
+    for (k = 0; k < w->pair_count; ++k)
+        for (j = 0; j < 2; ++j) {
+            int i = j == 0 ? w->pairs[k].a : w->pairs[k].b;
+            cr_body *b = &w->bodies[i];
+            cr_box start, end;
+            cr_escape_sweep e;
+            if (!(b->flags & CR_BODY_CARRIED))
+                continue;
+            cr_shape_box(&w->info[i].shape, b->x, b->q, &end);
+            cr_shape_box(&w->info[i].shape, w->backup[i].x, w->backup[i].q, &start);
+            cr_box_merge(&start, &end);
+            e.w = w;
+            e.body = i;
+            e.dt = dt;
+            e.carriers = 0;
+            (void)cr_broadphase_query(&w->bp, w->boxes, &start, cr_escape_static, &e);
+            b->flags &= (unsigned short)~CR_BODY_CARRIED; /* (once) */
+        }
+}
+#endif
+
 void cr_continuous_statics(carom_world *w, float dt)
 {
     int k;
@@ -829,6 +893,7 @@ void cr_continuous_statics(carom_world *w, float dt)
     cr_continuous_escapes(w, dt);
 #if CAROM_ENABLE_KINEMATIC
     if (w->carried_count > 0) {
+        cr_continuous_carried(w, dt);
         for (k = 0; k < w->pair_count; ++k) {
             w->bodies[w->pairs[k].a].flags &= (unsigned short)~CR_BODY_CARRIED;
             w->bodies[w->pairs[k].b].flags &= (unsigned short)~CR_BODY_CARRIED;

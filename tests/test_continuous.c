@@ -512,6 +512,69 @@ START_TEST(test_ball_a_blade_sends_off_stays_off_a_wall)
         }
 }
 END_TEST
+
+/*
+ * A kinematic piston, a 2 m box, drives at 5, 20 or 100 m/s into a
+ * static wall 10 cm thick, no gravity, with a body between them: a ball
+ * of radius 1 m or a 1 m box, frictionless and plastic, touching the
+ * wall. Nothing can stop the piston and nothing can move the wall, so
+ * the body is crushed; it must not come out of the wall's far side (a
+ * static body bounds the world: a container's wall). The body's move in
+ * a step, 8 cm to 1.7 m, is below half its own half-width for the slower
+ * pistons, so the guard took it for slow: pushed on by the piston, its
+ * centre crossed the wall's middle and the wall's far face pushed it out
+ * (the ball at x = 4.4 m and 18.9 m after 60 steps, every method; Box2D
+ * 2.4.1 and v3 alike). Against a thin wall a body is fast when its move
+ * passes half the wall's half-width: its centre may go into the wall
+ * (the crush has no answer), but stays on the near half.
+ */
+START_TEST(test_body_a_kinematic_piston_crushes_stays_on_the_near_side_of_a_thin_wall)
+{
+    static const float speeds[3] = {5.0f, 20.0f, 100.0f};
+    int m, v, shape, k;
+    for (m = 0; m < CAROM_METHOD_COUNT; ++m)
+        for (v = 0; v < 3; ++v)
+            for (shape = 0; shape < 2; ++shape) {
+                carom_world_def wd = guard_def((carom_method)m, 0.0f, 1.0f / 60.0f, 4);
+                carom_body_def bd = carom_default_body_def();
+                tw t;
+                int body;
+                wd.max_bodies = 3;
+                t = tw_make(&wd);
+                bd.type = CAROM_BODY_STATIC;
+                bd.restitution = 0.0f;
+                bd.friction = 0.0f;
+                carom_body_def_set_box(&bd, 0.05f, 5.0f);
+                tw_add(&t, &bd);
+                bd = carom_default_body_def();
+                bd.restitution = 0.0f;
+                bd.friction = 0.0f;
+                if (shape == 0)
+                    bd.radius = 1.0f;
+                else
+                    carom_body_def_set_box(&bd, 1.0f, 1.0f);
+                bd.position.x = -1.06f;
+                body = tw_add(&t, &bd);
+                bd.type = CAROM_BODY_KINEMATIC;
+                carom_body_def_set_box(&bd, 1.0f, 1.0f);
+                bd.position.x = -3.07f;
+                bd.velocity.x = speeds[v];
+                tw_add(&t, &bd);
+                for (k = 0; k < 60; ++k) {
+                    carom_body_state b;
+                    tw_steps(&t, 1);
+                    b = tw_state(&t, body);
+                    ck_assert_msg(b.position.x < 0.0f,
+                                  "%s, %s, piston at %g m/s: step %d, its centre at x = %g, "
+                                  "past the wall's middle at 0",
+                                  carom_method_name((carom_method)m),
+                                  shape == 0 ? "ball" : "box", (double)speeds[v], k + 1,
+                                  (double)b.position.x);
+                }
+                tw_free(&t);
+            }
+}
+END_TEST
 #endif
 
 /*
@@ -583,6 +646,7 @@ Suite *suite_continuous(void)
     tcase_add_test(tc, test_fast_kinematic_wall_leaves_nothing_behind);
     tcase_add_test(tc, test_spinning_kinematic_blade_strikes_a_ball_as_newton_says);
     tcase_add_test(tc, test_ball_a_blade_sends_off_stays_off_a_wall);
+    tcase_add_test(tc, test_body_a_kinematic_piston_crushes_stays_on_the_near_side_of_a_thin_wall);
 #endif
     tcase_add_test(tc, test_what_the_solver_stops_is_left_alone);
 #endif
