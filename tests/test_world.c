@@ -407,13 +407,16 @@ END_TEST
  * gravity; time and angles as they were), is the same scene in other
  * units, and in binary floating point every product by k is exact: its
  * run must give, bit for bit, k times the positions and velocities, the
- * same rotations and spins. A mixed pile of circles, boxes and triangles
- * (restitution 0 to 1, friction 0 to 0.8, thrown, spinning) lands in a
- * box of static walls; k = 1/4 and 4, every method. One absolute
- * constant in the step (a slop, a speed threshold in m/s) would change
- * the scaled run's bits where it acts.
+ * same rotations and spins. So must one whose densities are multiplied
+ * by a power of two (the same motion, every impulse scaled). A mixed
+ * pile of circles, boxes and triangles (densities 0.5 to 1.75,
+ * restitution 0 to 1, friction 0 to 0.8, thrown, spinning) lands in a
+ * box of static walls; lengths times 1/4 and 4, densities times 4, both
+ * (4 and 1/16), every method. One absolute constant in the step (a slop,
+ * a speed threshold in m/s, an impulse in N s) would change the scaled
+ * run's bits where it acts.
  */
-static void scaled_pile(tw *t, float k, carom_method m)
+static void scaled_pile(tw *t, float k, float mass_k, carom_method m)
 {
     carom_world_def wd = carom_default_world_def();
     carom_body_def bd = carom_default_body_def();
@@ -458,22 +461,25 @@ static void scaled_pile(tw *t, float k, carom_method m)
         bd.angular_velocity = -4.0f + 0.9f * (float)(i % 8);
         bd.restitution = 0.25f * (float)(i % 5);
         bd.friction = 0.2f * (float)(i % 5);
+        bd.density = (0.5f + 0.25f * (float)(i % 6)) * mass_k;
         tw_add(t, &bd);
     }
 }
 
 START_TEST(test_scene_scaled_by_a_power_of_two_gives_the_same_bits_scaled)
 {
-    static const float scales[2] = {0.25f, 4.0f};
+    /* lengths times k, and densities times mass_k: impulses then scale by
+     * k times the masses' factor, velocities by k alone */
+    static const float scales[4][2] = {{0.25f, 1.0f}, {4.0f, 1.0f}, {1.0f, 4.0f}, {4.0f, 0.0625f}};
     int m, j, i;
     for (m = 0; m < CAROM_METHOD_COUNT; ++m) {
         tw one;
-        scaled_pile(&one, 1.0f, (carom_method)m);
+        scaled_pile(&one, 1.0f, 1.0f, (carom_method)m);
         tw_steps(&one, 90);
-        for (j = 0; j < 2; ++j) {
-            const float k = scales[j];
+        for (j = 0; j < 4; ++j) {
+            const float k = scales[j][0];
             tw t;
-            scaled_pile(&t, k, (carom_method)m);
+            scaled_pile(&t, k, scales[j][1], (carom_method)m);
             tw_steps(&t, 90);
             for (i = 3; i < 24; ++i) {
                 carom_body_state a = tw_state(&one, i), b = tw_state(&t, i);
@@ -482,9 +488,10 @@ START_TEST(test_scene_scaled_by_a_power_of_two_gives_the_same_bits_scaled)
                                   b.velocity.y == k * a.velocity.y &&
                                   b.rotation.c == a.rotation.c && b.rotation.s == a.rotation.s &&
                                   b.angular_velocity == a.angular_velocity,
-                              "%s, scale %g: body %d at (%.9g, %.9g) v (%.9g, %.9g) w %.9g, "
-                              "scaled from (%.9g, %.9g) v (%.9g, %.9g) w %.9g",
-                              carom_method_name((carom_method)m), (double)k, i,
+                              "%s, lengths x %g, densities x %g: body %d at (%.9g, %.9g) v "
+                              "(%.9g, %.9g) w %.9g, scaled from (%.9g, %.9g) v (%.9g, %.9g) w %.9g",
+                              carom_method_name((carom_method)m), (double)k,
+                              (double)scales[j][1], i,
                               (double)b.position.x, (double)b.position.y, (double)b.velocity.x,
                               (double)b.velocity.y, (double)b.angular_velocity,
                               (double)(k * a.position.x), (double)(k * a.position.y),
