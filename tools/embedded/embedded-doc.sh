@@ -402,6 +402,19 @@ target of at most 500 bytes per body at default capacities is
 $(awk '$2 ~ /^default_world_/ { n = $2; gsub(/[^0-9]/, "", n); if ($3 / n > 500) bad = 1 }
        END { print (bad ? "not met" : "met") }' "$work/sizes-m0.txt").
 
+Why it is not met: the default capacities must hold a dense pile (a
+pile of N bodies must not fail at them), and a pile needs more than that
+at exactly the capacities it uses. Equal circles packed hexagonally touch
+6 others each (3 contacts a body), and \`docs/benchmarks.md\` (Memory per
+body) measures about 3.1 to 3.5 candidate pairs and 1.4 to 1.9 contacts
+a body on the falling pile of 10^2 to 10^4 bodies, 1,170 to 1,640 bytes a
+body at exactly those capacities; the per-body records alone (the body
+and its step backup, shape, bounding box, grid entry, solver and drift
+state) are about 600 bytes. Box2D v3 holds the same 10^4 pile in about
+4.5 KB a body, Box2D 2.4.1 in about 2.1 KB. Reaching 500 needs records of
+less than half their size (a shared shape store, compact contact points),
+not a smaller default.
+
 ### 8 KB of world on an M0
 
 \`make embedded-lean8k\`: the bounce scene and the 5-box stack, each built
