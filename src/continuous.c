@@ -769,6 +769,22 @@ static int cr_box_holds(const cr_box *outer, const cr_box *inner)
            cr_ge(inner->lo_y, outer->lo_y) && cr_le(inner->hi_y, outer->hi_y);
 }
 
+/* Body i swept against the walls the grid holds around its start pose
+ * and its end pose (whose box is *end), of kind `carriers` (as in
+ * cr_escape_sweep). */
+static void cr_sweep_around(carom_world *w, int i, float dt, const cr_box *end, int carriers)
+{
+    cr_box around;
+    cr_escape_sweep e;
+    cr_shape_box(&w->info[i].shape, w->backup[i].x, w->backup[i].q, &around);
+    cr_box_merge(&around, end);
+    e.w = w;
+    e.body = i;
+    e.dt = dt;
+    e.carriers = carriers;
+    (void)cr_broadphase_query(&w->bp, w->boxes, &around, cr_escape_static, &e);
+}
+
 /* Body i, if the step left it outside its box: swept against the static
  * bodies around its start and end poses. */
 static void cr_escape_check(carom_world *w, int i, float dt)
@@ -776,8 +792,7 @@ static void cr_escape_check(carom_world *w, int i, float dt)
     const cr_body *b = &w->bodies[i];
     const cr_shape *sh = &w->info[i].shape;
     const cr_box *g = &w->boxes[i];
-    cr_box end, start;
-    cr_escape_sweep e;
+    cr_box end;
     if (!cr_may_be_fast(w, i, dt))
         return; /* (cr_sweep_static would find it too slow to tunnel) */
     /* its circle first (no vertex turned): inside, so is it */
@@ -787,13 +802,7 @@ static void cr_escape_check(carom_world *w, int i, float dt)
     cr_shape_box(sh, b->x, b->q, &end);
     if (cr_box_holds(g, &end))
         return;
-    cr_shape_box(sh, w->backup[i].x, w->backup[i].q, &start);
-    cr_box_merge(&start, &end);
-    e.w = w;
-    e.body = i;
-    e.dt = dt;
-    e.carriers = -1;
-    (void)cr_broadphase_query(&w->bp, w->boxes, &start, cr_escape_static, &e);
+    cr_sweep_around(w, i, dt, &end, -1);
 }
 
 /* Only an impulse moves a body off the path its box was swept along, and
@@ -851,20 +860,16 @@ static void cr_continuous_carried(carom_world *w, float dt)
         for (j = 0; j < 2; ++j) {
             int i = j == 0 ? w->pairs[k].a : w->pairs[k].b;
             cr_body *b = &w->bodies[i];
-            cr_box start, end;
-            cr_escape_sweep e;
+            cr_box end;
             if (!(b->flags & CR_BODY_CARRIED))
                 continue;
             cr_shape_box(&w->info[i].shape, b->x, b->q, &end);
-            cr_shape_box(&w->info[i].shape, w->backup[i].x, w->backup[i].q, &start);
-            cr_box_merge(&start, &end);
-            e.w = w;
-            e.body = i;
-            e.dt = dt;
-            e.carriers = 0;
-            (void)cr_broadphase_query(&w->bp, w->boxes, &start, cr_escape_static, &e);
-            b->flags &= (unsigned short)~CR_BODY_CARRIED; /* (once) */
+            cr_sweep_around(w, i, dt, &end, 0);
+            /* once; and every carried body is in a pair, so this also
+             * clears the flags for the next step */
+            b->flags &= (unsigned short)~CR_BODY_CARRIED;
         }
+    w->carried_count = 0;
 }
 #endif
 
@@ -892,14 +897,8 @@ void cr_continuous_statics(carom_world *w, float dt)
     }
     cr_continuous_escapes(w, dt);
 #if CAROM_ENABLE_KINEMATIC
-    if (w->carried_count > 0) {
+    if (w->carried_count > 0)
         cr_continuous_carried(w, dt);
-        for (k = 0; k < w->pair_count; ++k) {
-            w->bodies[w->pairs[k].a].flags &= (unsigned short)~CR_BODY_CARRIED;
-            w->bodies[w->pairs[k].b].flags &= (unsigned short)~CR_BODY_CARRIED;
-        }
-        w->carried_count = 0;
-    }
 #endif
 }
 
