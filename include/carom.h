@@ -240,7 +240,21 @@ typedef struct carom_world_def {
     float linear_slop;        /**< contact distance, m; CAROM_AUTO (default):
                                    CAROM_SLOP_PER_LENGTH x length_unit */
     int substeps;             /**< contact substeps per step, 1..64; default
-                                   CAROM_DEFAULT_SUBSTEPS (4) */
+                                   CAROM_DEFAULT_SUBSTEPS (4): the fewest */
+    int max_substeps;         /**< 0..64; 0 = CAROM_DEFAULT_MAX_SUBSTEPS
+                                   (16). A step takes more than `substeps`,
+                                   up to this, where gravity would move a
+                                   body from rest by more than one linear
+                                   slop of the length unit in a substep:
+                                   n = ceil(dt sqrt(|g| / (2
+                                   CAROM_SUBSTEP_FALL_SLOPS
+                                   CAROM_SLOP_PER_LENGTH L))), L the length
+                                   unit (small bodies, long steps: a pile
+                                   of 1 cm bodies under 10 m/s^2 at
+                                   dt 1/60 takes 12). At or below
+                                   `substeps`: always `substeps`.
+                                   carom_world_get_tolerances() reports the
+                                   count */
     int iterations;           /**< contact sweeps per substep, 1..64;
                                    default 1 */
     int relax_iterations;     /**< relaxing sweeps per substep, 0..64;
@@ -326,8 +340,8 @@ typedef enum carom_status {
                                        CAROM_LIMIT_MAX_DT] */
     CAROM_ERR_BAD_CAPACITY,       /**< a capacity <= 0 or too large */
     CAROM_ERR_BUFFER_TOO_SMALL,   /**< caller buffer smaller than needed */
-    CAROM_ERR_BAD_PARAMETER,      /**< substeps or iterations out of range,
-                                       sleep_time < 0 */
+    CAROM_ERR_BAD_PARAMETER,      /**< substeps, max_substeps or iterations
+                                       out of range, sleep_time < 0 */
     CAROM_ERR_BAD_METHOD,         /**< unknown method */
     CAROM_ERR_BAD_BODY_TYPE,      /**< not static, dynamic or kinematic */
     CAROM_ERR_BAD_SHAPE,          /**< neither circle nor polygon */
@@ -600,6 +614,8 @@ typedef struct carom_tolerances {
     float linear_slop;   /**< m */
     float rest_speed;    /**< m/s, for a body under gravity alone */
     float sleep_speed;   /**< m/s */
+    int substeps;        /**< substeps a step takes (carom_world_def.
+                              substeps and max_substeps) */
 } carom_tolerances;
 
 carom_status carom_world_get_tolerances(const carom_world *w,

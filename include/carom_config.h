@@ -306,6 +306,24 @@
                                       step (docs/physics.md) */
 #endif
 
+#ifndef CAROM_DEFAULT_MAX_SUBSTEPS
+#define CAROM_DEFAULT_MAX_SUBSTEPS 16 /**< most substeps a step takes on its
+                                           own (carom_world_def.max_substeps):
+                                           more than `substeps` where gravity
+                                           would move a body from rest by
+                                           more than CAROM_SUBSTEP_FALL_SLOPS
+                                           in one substep (small bodies, long
+                                           steps; docs/physics.md) */
+#endif
+
+#ifndef CAROM_SUBSTEP_FALL_SLOPS
+#define CAROM_SUBSTEP_FALL_SLOPS 1.0f /**< how far (in linear slops of the
+                                           length unit, CAROM_SLOP_PER_LENGTH
+                                           x L) a body may fall from rest in
+                                           one substep: g h^2 / 2 <= this x
+                                           slop sets the substep count */
+#endif
+
 #ifndef CAROM_DEFAULT_ITERATIONS
 #define CAROM_DEFAULT_ITERATIONS 1 /**< contact sweeps per substep */
 #endif

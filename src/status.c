@@ -13,8 +13,8 @@ static const char *const cr_status_names[CAROM_STATUS_COUNT] = {
     "time step outside [CAROM_LIMIT_MIN_DT, CAROM_LIMIT_MAX_DT]",
     "capacity must be > 0 and fit in memory",
     "buffer too small",
-    "bad parameter (substeps or iterations outside 1..64, relax 0..64, "
-    "sleep time < 0)",
+    "bad parameter (substeps or iterations outside 1..64, max substeps or "
+    "relax 0..64, sleep time < 0)",
     "unknown method",
     "bad body type",
     "bad shape type",

@@ -96,6 +96,7 @@ typedef struct cr_scale {
     float push;       /* largest push-out speed, m/s */
     float face_tol;   /* polygon reference face tolerance, m */
     float sleep_speed;/* m/s */
+    int substeps;     /* of a step: def.substeps, or more under gravity */
 } cr_scale;
 
 struct carom_world {

@@ -162,6 +162,7 @@ typedef struct world_int_key {
 
 static const world_int_key world_int_keys[] = {
     {"substeps", offsetof(carom_world_def, substeps), 1, 64},
+    {"max-substeps", offsetof(carom_world_def, max_substeps), 0, 64},
     {"iterations", offsetof(carom_world_def, iterations), 1, 64},
     {"relax-iterations", offsetof(carom_world_def, relax_iterations), 0, 64},
     {"max-pairs", offsetof(carom_world_def, max_pairs), 0, 1L << 26},
