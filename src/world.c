@@ -491,17 +491,16 @@ carom_method carom_world_get_method(const carom_world *w)
 
 /* ---- the step ------------------------------------------------------------------ */
 
-/* The tolerances of this step (carom_config.h: scale). */
 /*
  * Substeps of a step. The contact solver takes a body's weight off it once
  * a substep; in between, gravity moves it g h^2 / 2 from rest, and in a
  * deep pile the sweeps do not take all of it back before the next substep
  * adds more. While that fall stays within a slop of the length unit the
- * default 4 substeps hold a 500-body pour to a fraction of a millimetre
- * (dt 1/60, bodies 0.2 m across: 0.8 slop); twice as far per substep
- * (dt 1/40) it ended 1.7 cm deep, and at dt 1/30, or with bodies 3 cm
- * across at 1/60, bodies sank into each other by half their size
- * (docs/physics.md, "Small bodies and long steps"). So a step takes
+ * default 4 substeps hold a 500-body pour to 2 mm (dt 1/60, bodies 0.2 m
+ * across: 0.8 slop); twice as far per substep (dt 1/40) it ended 17 mm
+ * deep, at dt 1/30 130 mm, and bodies 6 cm across under the same gravity
+ * sank 44 mm into each other at dt 1/60 (docs/physics.md, "Small bodies
+ * and long steps"). So a step takes
  * n = ceil(dt sqrt(|g| / (2 f s))) substeps, s the slop of the length
  * unit and f CAROM_SUBSTEP_FALL_SLOPS, at least def.substeps and at most
  * def.max_substeps. A dimensionless rule (g h^2 / L): a scene scaled
@@ -525,6 +524,7 @@ static int cr_substeps_for(const carom_world *w, float length)
     return n;
 }
 
+/* The tolerances of this step (carom_config.h: scale). */
 void cr_scale_compute(const carom_world *w, cr_scale *s)
 {
     float sum = 0.0f, all = 0.0f;

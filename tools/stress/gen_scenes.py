@@ -76,8 +76,9 @@ class Scene:
         return "\n".join(out) + "\n"
 
 
-def world(s, dt_key, steps, extra=""):
-    w = "gravity=%s dt=%s steps=%d" % (vec(0, -G * s), DT[dt_key], steps)
+def world(s, dt_key, steps, extra="", g_scale=None):
+    gs = s if g_scale is None else g_scale
+    w = "gravity=%s dt=%s steps=%d" % (vec(0, -G * gs), DT[dt_key], steps)
     return w + (" " + extra if extra else "")
 
 
@@ -158,14 +159,28 @@ class Rng:
         return lo + (hi - lo) * u
 
 
-def pour(s=1.0, plot=True):
+def pour(s=1.0, plot=True, dtk=60, real_g=False):
+    """real_g: lengths and speeds scaled by s, gravity kept at G (smaller
+    bodies under the same gravity: a coarser step for them)."""
     n = 500
     inner = 1.5      # inner walls at x = -1.5, +1.5
     wall = 0.2       # wall and floor thickness
     height = 12.0    # wall top
     cols, pitch, y0 = 12, 0.25, 0.2
-    name = "pour-%d%s" % (n, suffix(s))
-    sc = Scene(name, "pour" if s == 1 else "scaled", [
+    name = "pour-%d%s%s%s" % (n, suffix(s), "-g10" if real_g else "",
+                              "-dt%d" % dtk if dtk != 60 else "")
+    notes = []
+    if real_g:
+        notes = ["Gravity is kept at %s m/s^2, not scaled: bodies %s m across"
+                 % (num(G), num(0.2 * s)),
+                 "under the same gravity, for which dt is %s times coarser."
+                 % num(round((1 / s) ** 0.5, 2))]
+    if dtk != 60 or real_g:
+        notes.append("With a fixed 4 substeps this pile sinks into itself by"
+                     " centimetres;")
+        notes.append("the step takes more (docs/physics.md, \"Small bodies and"
+                     " long steps\").")
+    sc = Scene(name, "pour" if s == 1 or real_g else "scaled", [
         "%d bodies, circles (radius 0.1) and boxes (half-extents 0.1,0.1)"
         % n + (", scaled by %s," % num(s) if s != 1 else "") + " in a",
         "checkerboard of a %d-column grid (pitch %s m, jitter +-0.01 m) from"
@@ -173,13 +188,15 @@ def pour(s=1.0, plot=True):
         "y = 0.2 m up, with random velocities (|vx| <= 0.5, -0.5 <= vy <= 0,",
         "|omega| <= 2; LCG seed 20240601), poured into a static container:",
         "floor (top at y = 0) and two walls 0.2 m thick, inner faces at",
-        "x = -1.5 and 1.5 m, 12 m tall. 10 s at dt = 1/60. Pass: every centre",
+        "x = -1.5 and 1.5 m, 12 m tall. 10 s at dt = 1/%d. Pass: every centre"
+        % dtk,
         "inside the inner walls and above the floor top at the end; worst",
         "pairwise overlap <= 1 cm" + (" (lengths x %s)." % num(s) if s != 1
                                       else "."),
-        "max-pairs is raised for the packed pile (12 per body)."])
+        "max-pairs is raised for the packed pile (12 per body)."] + notes)
     rng = Rng(20240601)
-    sc.world = world(s, 60, 600, "max-pairs=%d" % (12 * (n + 3)))
+    sc.world = world(s, dtk, STEPS_10S[dtk], "max-pairs=%d" % (12 * (n + 3)),
+                     g_scale=1.0 if real_g else None)
     # floor under the walls too; walls stand on it
     sc.bodies.append("box static half-extents=%s position=%s" % (
         vec((inner + wall) * s, wall / 2 * s), vec(0, -wall / 2 * s)))
@@ -336,6 +353,10 @@ def all_scenes():
     scenes.append(pyramid(20))
     scenes.append(pyramid(40))
     scenes.append(pour())
+    # long steps and small bodies (docs/physics.md, "Small bodies and long
+    # steps"): the substeps grow with dt sqrt(g / L)
+    scenes.append(pour(dtk=30, plot=False))
+    scenes.append(pour(0.3, plot=False, real_g=True))
     for r in (10, 100, 1000):
         scenes.append(heavy_on_light(r))
     for hx in (1.0, 2.5, 5.0):
