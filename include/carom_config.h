@@ -402,6 +402,21 @@
                                                body included) count as still */
 #endif
 
+#ifndef CAROM_SLEEP_SPEEDUP
+#define CAROM_SLEEP_SPEEDUP 0.1f /**< a slow body whose speed has grown by
+                                      this fraction of the sleep speed since
+                                      it became slow is starting to move (a
+                                      leaning tower tipping over), not
+                                      still: its still time starts again */
+#endif
+
+#ifndef CAROM_SLEEP_SPEEDUP_PER_G
+#define CAROM_SLEEP_SPEEDUP_PER_G 0.001f /**< under gravity, at most this
+                                              fraction of |g| x sleep_time
+                                              (5 mm/s at 10 m/s^2, 0.5 s):
+                                              big bodies tip slowly */
+#endif
+
 #ifndef CAROM_SLEEP_WINDOW
 #define CAROM_SLEEP_WINDOW 8.0f /**< sleep times: a body that has stayed
                                      within the sleep speed times this

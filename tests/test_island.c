@@ -151,6 +151,59 @@ START_TEST(test_piles_of_any_size_fall_asleep)
 }
 END_TEST
 
+/*
+ * A tower of six boxes of half-size h = 1 m on the floor, box i set i f h
+ * to the right of box 0 (f = frac): the top five's centre of mass lies
+ * 3 f h right of box 0's centre, past its edge (h) when f > 1/3, and then
+ * the tower must fall, however slowly it starts; with f = 0.32 every part
+ * of it rests on what is below (3 f = 0.96, and 2.5 f = 0.8 for the whole
+ * tower over the floor and for the top four over box 1), and it must
+ * stand and sleep. Released at rest, the tower with f = 0.335 (the top
+ * five 0.5 % of a box past the edge) tipped slower than the sleep speed
+ * for the sleep time and slept standing, in every method (Box2D 2.4.1
+ * and v3 let it fall).
+ */
+static tw leaning_tower(carom_method m, float frac)
+{
+    carom_world_def wd = sleepy_def(m, 7);
+    carom_body_def bd = carom_default_body_def();
+    tw t = tw_make(&wd);
+    int i;
+    bd.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&bd, 200.0f, 1.0f);
+    bd.position.y = -1.0f;
+    tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    carom_body_def_set_box(&bd, 1.0f, 1.0f);
+    for (i = 0; i < 6; ++i) {
+        bd.position.x = (float)i * frac;
+        bd.position.y = 1.0f + 2.0f * (float)i;
+        tw_add(&t, &bd);
+    }
+    return t;
+}
+
+START_TEST(test_leaning_tower_past_its_edge_falls_asleep_or_not)
+{
+    int m;
+    for (m = 0; m < CAROM_METHOD_COUNT; ++m) {
+        tw t = leaning_tower((carom_method)m, 0.335f);
+        tw_steps(&t, 1200); /* 20 s */
+        ck_assert_msg(tw_state(&t, 6).position.y < 3.0f,
+                      "%s: the top box is at y = %g: the tower stands",
+                      carom_method_name((carom_method)m), (double)tw_state(&t, 6).position.y);
+        tw_free(&t);
+
+        t = leaning_tower((carom_method)m, 0.32f);
+        ck_assert_msg(steps_to_sleep(&t, 1, 6, 1200) > 0, "%s: the stable tower is awake",
+                      carom_method_name((carom_method)m));
+        ck_assert_close(tw_state(&t, 6).position.y, 11.0, 0.01);
+        ck_assert_close(tw_state(&t, 6).position.x, 5.0 * 0.32, 0.01);
+        tw_free(&t);
+    }
+}
+END_TEST
+
 Suite *suite_island(void)
 {
     Suite *s = suite_create("island");
@@ -158,6 +211,7 @@ Suite *suite_island(void)
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, test_still_islands_whose_boxes_meet_fall_asleep);
     tcase_add_test(tc, test_piles_of_any_size_fall_asleep);
+    tcase_add_test(tc, test_leaning_tower_past_its_edge_falls_asleep_or_not);
     suite_add_tcase(s, tc);
     return s;
 }
