@@ -17,7 +17,8 @@
  *                   4 length_unit, rest_speed,    max_pairs, max_contacts,
  *                     linear_slop (floats)        max_events, max_impacts
  *                   5 substeps, iterations, relax_iterations,
- *                     enable_sleep (ints), sleep_time (float)
+ *                     enable_sleep (ints), sleep_time (float); and
+ *                     max_substeps = (7 iterations + relax) mod 17
  *                   6 install the force callback
  *                   7 one more byte X: world B's buffer is misaligned
  *                     by X & 15; max_touch_events is X >> 4 (0: the
@@ -2502,6 +2503,10 @@ static void fz_read_world_def(fz_reader *r, carom_world_def *d, unsigned flags)
         d->relax_iterations = fz_int(r, 0, 8);
         d->enable_sleep = fz_int(r, 0, 1);
         d->sleep_time = fz_float(r);
+        /* no byte of its own (older inputs keep their meaning): 0 (the
+         * default cap), below substeps (fixed), or up to 16 */
+        d->max_substeps = (int)((7u * (unsigned)d->iterations +
+                                 (unsigned)d->relax_iterations) % 17u);
     }
 }
 
@@ -2598,15 +2603,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 
     fz_set_where("world definition: gravity %g %g dt %g method %d bodies %d "
                  "pairs %d contacts %d events %d impacts %d length %g rest %g "
-                 "slop %g substeps %d iterations %d relax %d sleep %d/%g "
+                 "slop %g substeps %d (max %d) iterations %d relax %d sleep %d/%g "
                  "touch events %d",
                  (double)S.def.gravity.x, (double)S.def.gravity.y,
                  (double)S.def.dt, (int)S.def.method, S.def.max_bodies,
                  S.def.max_pairs, S.def.max_contacts, S.def.max_events,
                  S.def.max_impacts, (double)S.def.length_unit,
                  (double)S.def.rest_speed, (double)S.def.linear_slop,
-                 S.def.substeps, S.def.iterations, S.def.relax_iterations,
-                 S.def.enable_sleep, (double)S.def.sleep_time,
+                 S.def.substeps, S.def.max_substeps, S.def.iterations,
+                 S.def.relax_iterations, S.def.enable_sleep, (double)S.def.sleep_time,
                  S.def.max_touch_events);
     valid = carom_world_def_validate(&S.def);
     bytes = carom_world_buffer_size(&S.def);

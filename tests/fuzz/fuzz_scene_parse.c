@@ -34,7 +34,8 @@ static int fz_same_world(const carom_world_def *x, const carom_world_def *y)
            fz_bits(x->length_unit) == fz_bits(y->length_unit) &&
            fz_bits(x->rest_speed) == fz_bits(y->rest_speed) &&
            fz_bits(x->linear_slop) == fz_bits(y->linear_slop) &&
-           x->substeps == y->substeps && x->iterations == y->iterations &&
+           x->substeps == y->substeps && x->max_substeps == y->max_substeps &&
+           x->iterations == y->iterations &&
            x->relax_iterations == y->relax_iterations &&
            x->enable_sleep == y->enable_sleep &&
            fz_bits(x->sleep_time) == fz_bits(y->sleep_time) &&
