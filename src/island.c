@@ -162,9 +162,10 @@ void cr_island_sleep(carom_world *w, float dt)
         return;
     /* how much faster a slow body may get and still be still: a fraction
      * of the sleep speed, and under gravity at most a fraction of what
-     * gravity gives in the sleep time (big bodies tip slowly: the top of
-     * a leaning tower of 16 m boxes gained 0.04 m/s in its first 0.5 s,
-     * 4 % of their sleep speed) */
+     * gravity gives in the sleep time (big bodies tip slowly for their
+     * size: the top of a tower of 4 m boxes 0.5 % past its edge gains
+     * about 5 mm/s in its first 0.5 s, a fifth of a tenth of their sleep
+     * speed) */
     speedup = cr_mul(CAROM_SLEEP_SPEEDUP, w->scale.sleep_speed);
     if (cr_gt(g, 0.0f))
         speedup = cr_min(speedup, cr_mul(CAROM_SLEEP_SPEEDUP_PER_G,
