@@ -34,6 +34,10 @@ CHECK_LIBS   = $(shell pkg-config --libs check 2>/dev/null)
 
 SCENE ?= tools/scenes/default.scene
 
+# Plain `make` builds `all`, whatever the fragments included below define
+# first (help-check fails if this changes).
+.DEFAULT_GOAL := all
+
 # The Box2D 2.4.1 harness (tools/box2d.mk): `make` builds build/carom-box2d
 # when Box2D is installed.
 include tools/box2d.mk
@@ -292,3 +296,6 @@ help-check:
 	rm -f $(BUILD)/.help.txt; \
 	if [ -n "$$missing" ]; then echo "make help does not list:$$missing" >&2; exit 1; fi; \
 	echo "make help lists every .PHONY target"
+	@goal=$$($(MAKE) --no-print-directory -pRrq -f $(firstword $(MAKEFILE_LIST)) : 2>/dev/null | sed -n 's/^\.DEFAULT_GOAL := //p'); \
+	if [ "$$goal" != all ]; then echo "plain make builds '$$goal', not 'all'" >&2; exit 1; fi; \
+	echo "plain make builds all"

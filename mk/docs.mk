@@ -10,12 +10,7 @@
 # It reads files and runs `make help`; it builds nothing and writes nothing
 # under the repository.
 
-# Wherever this file is included, it does not change the default goal.
-docs_default_goal := $(.DEFAULT_GOAL)
-
 .PHONY: docs-check
 
 docs-check:
 	sh tools/check-docs.sh --make "$(MAKE) BUILD=$(BUILD)"
-
-.DEFAULT_GOAL := $(docs_default_goal)

@@ -21,9 +21,6 @@
 # X.Y.Z is read from CAROM_VERSION_MAJOR/MINOR/PATCH in include/carom.h
 # each time make runs.
 
-# Wherever this file is included, it does not change the default goal.
-install_default_goal := $(.DEFAULT_GOAL)
-
 PREFIX       ?= /usr/local
 BINDIR       ?= $(PREFIX)/bin
 LIBDIR       ?= $(PREFIX)/lib
@@ -129,5 +126,3 @@ install-test: $(LIB) $(SHLIB) $(CLI) $(CAROM_PC)
 check-cxx:
 	$(CXX) -std=c++98 -Wall -Wextra -Werror -pedantic -fsyntax-only $(CPPFLAGS) tests/cxx_header.cpp
 	$(CXX) -std=c++17 -Wall -Wextra -Werror -pedantic -fsyntax-only $(CPPFLAGS) tests/cxx_header.cpp
-
-.DEFAULT_GOAL := $(install_default_goal)

@@ -35,9 +35,6 @@
 # information: validation never runs while counting, so many of its
 # counting branches cannot be taken).
 
-# Wherever this file is included, it does not change the default goal.
-quality_default_goal := $(.DEFAULT_GOAL)
-
 COV_BUILD        := $(BUILD)/cov
 COV_DIR          := $(BUILD)/coverage
 COV_MIN_LINES    ?= 95
@@ -205,5 +202,3 @@ memcheck: $(CLI)
 	done
 	@rm -rf $(MEMCHECK_TMP)
 	@echo "memcheck: no error, no leak"
-
-.DEFAULT_GOAL := $(quality_default_goal)

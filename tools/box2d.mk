@@ -8,9 +8,6 @@
 #
 #   make box2d         build/carom-box2d
 
-# Wherever this file is included, it does not change the default goal.
-box2d_default_goal := $(.DEFAULT_GOAL)
-
 BOX2D_BIN  := $(BUILD)/carom-box2d
 # Deferred (=): expanded only when the recipe below runs.
 BOX2D_CFLAGS = $(shell pkg-config --cflags box2d 2>/dev/null)
@@ -28,5 +25,3 @@ $(BOX2D_BIN): tools/carom_box2d.cpp tools/scene.h tools/cli_options.h $(wildcard
 	@pkg-config --exists box2d || { echo "Box2D not found (pkg-config box2d): apt-get install libbox2d-dev g++ pkg-config" >&2; exit 1; }
 	$(CXX) -std=c++17 -O2 -Wall -Wextra $(CPPFLAGS) -Itools $(BOX2D_CFLAGS) \
 	    tools/carom_box2d.cpp $(CLI_OPT_OBJ) $(TOOL_OBJ) $(LIB) -o $@ $(BOX2D_LIBS) -lm
-
-.DEFAULT_GOAL := $(box2d_default_goal)

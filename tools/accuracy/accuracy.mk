@@ -16,9 +16,6 @@
 # its build, so a variant is the same sources built with other
 # CAROM_FLAGS (a sub-make with BUILD and CAROM_FLAGS of its own).
 
-# Wherever this file is included, it does not change the default goal.
-accuracy_default_goal := $(.DEFAULT_GOAL)
-
 ACC_DIR  := $(BUILD)/accuracy
 ACC_SRC  := $(addprefix tools/accuracy/,accuracy.c reference.c record.c report.c)
 ACC_HDR  := tools/accuracy/accuracy.h tools/accuracy/reference.h tools/scene.h \
@@ -69,5 +66,3 @@ accuracy: $(ACC_BIN) $(CLI) $(BOX2D_BIN)
 
 accuracy-check: $(ACC_BIN)
 	$(ACC_BIN) check
-
-.DEFAULT_GOAL := $(accuracy_default_goal)

@@ -15,8 +15,6 @@
 # Uses the including Makefile's CC, CXX, BUILD, LIB, PROF_LIB, CPPFLAGS and
 # TOOL_CFLAGS. Box2D 2.4.1 comes from pkg-config (libbox2d-dev).
 
-bench_default_goal := $(.DEFAULT_GOAL)
-
 B2V3_DIR ?=
 B2V3_INC ?= $(if $(B2V3_DIR),$(B2V3_DIR)/include)
 B2V3_LIB ?= $(if $(B2V3_DIR),$(B2V3_DIR)/lib/libbox2d.a)
@@ -100,5 +98,3 @@ bench: $(BENCH_BIN) $(BENCH_OPS) $(BENCH_PLAIN)
 
 bench-quick: $(BENCH_BIN) $(BENCH_OPS) $(BENCH_PLAIN)
 	sh tools/bench/bench.sh --quick $(BENCH_ARGS) --out $(BENCH_DIR)/benchmarks-quick.md
-
-.DEFAULT_GOAL := $(bench_default_goal)

@@ -21,9 +21,6 @@
 # b2InternalAssert for the headers' inline functions to call. The static
 # library needs libm and, for its (unused here) thread scheduler, pthreads.
 
-# Wherever this file is included, it does not change the default goal.
-box2d_v3_default_goal := $(.DEFAULT_GOAL)
-
 B2V3_DIR ?=
 B2V3_INC ?= $(if $(B2V3_DIR),$(B2V3_DIR)/include)
 B2V3_LIB ?= $(if $(B2V3_DIR),$(B2V3_DIR)/lib/libbox2d.a)
@@ -47,5 +44,3 @@ $(B2V3_BIN): tools/box2d_v3/carom_box2d_v3.c tools/scene.h $(wildcard include/*.
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -std=c17 -DNDEBUG -Itools -isystem $(B2V3_INC) \
 	    tools/box2d_v3/carom_box2d_v3.c $(B2V3_SCENE_OBJ) $(LIB) -o $@ \
 	    $(B2V3_LIB) $(B2V3_LIBS)
-
-.DEFAULT_GOAL := $(box2d_v3_default_goal)

@@ -3,9 +3,6 @@
 # BUILD, CPPFLAGS and TOOL_CFLAGS are set. render.o calls no carom
 # function, so where it falls on build/carom's link line does not matter.
 
-# Wherever this file is included, it does not change the default goal.
-render_default_goal := $(.DEFAULT_GOAL)
-
 RENDER_OBJ := $(BUILD)/tools/render/render.o
 
 $(RENDER_OBJ): tools/render/render.c tools/render/render.h $(wildcard include/*.h)
@@ -35,5 +32,3 @@ render-images: $(CLI)
 	$(call render_still,bullet-events,tools/scenes/bullet.scene,1,--method events --impacts $(BULLET_VIEW))
 	$(call render_still,bullet-discrete,tools/scenes/bullet.scene,1,--method discrete --impacts $(BULLET_VIEW))
 	$(call render_still,stack,tools/scenes/stack.scene,600,--size 480)
-
-.DEFAULT_GOAL := $(render_default_goal)

@@ -18,9 +18,6 @@
 #
 # STRESS_JOBS (default 2) runs that many engine runs at once.
 
-# Wherever this file is included, it does not change the default goal.
-stress_default_goal := $(.DEFAULT_GOAL)
-
 STRESS_CHECK := $(BUILD)/stress_check
 STRESS_JOBS ?= 2
 # B2V3_LIB and B2V3_BIN come from tools/box2d_v3/box2d_v3.mk when the
@@ -55,5 +52,3 @@ bench-box2d: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D)
 
 stress-scenes:
 	python3 tools/stress/gen_scenes.py
-
-.DEFAULT_GOAL := $(stress_default_goal)

@@ -13,9 +13,6 @@
 #
 # VALIDATE_JOBS (default: the number of CPUs) runs that many engines at once.
 
-# Wherever this file is included, it does not change the default goal.
-validation_default_goal := $(.DEFAULT_GOAL)
-
 VALIDATE := $(BUILD)/validate
 VALIDATE_SRC := $(wildcard tools/validation/*.c)
 VALIDATE_JOBS ?=
@@ -40,5 +37,3 @@ validate: $(VALIDATE) $(CLI) $(BOX2D_BIN)
 validate-check: $(VALIDATE) $(CLI) $(BOX2D_BIN)
 	@sh tools/ensure-deps.sh plot
 	$(VALIDATE) $(VALIDATE_ARGS) --out $(BUILD)/validation.md --figure $(BUILD)/validation-bounce.png
-
-.DEFAULT_GOAL := $(validation_default_goal)
