@@ -204,6 +204,56 @@ START_TEST(test_leaning_tower_past_its_edge_falls_asleep_or_not)
 }
 END_TEST
 
+/*
+ * Zero gravity, sleeping on: a ball drifting at 3 cm/s (under the sleep
+ * speed, 5 cm/s for its 0.5 m radius) towards a wall, elastic, and two
+ * balls closing at 1 cm/s each. Nothing holds them, so nothing is at
+ * rest: each bounces and comes back, as without sleep. The ball slept
+ * 1.5 mm short of the wall once the wall was within contact reach (its
+ * box met the wall's, and a touching contact made its island sleepable),
+ * and a slow ball that struck a wall could sleep against it.
+ */
+START_TEST(test_slow_bodies_in_zero_gravity_do_not_sleep_short_of_an_impact)
+{
+    int m;
+    for (m = 0; m < CAROM_METHOD_COUNT; ++m) {
+        carom_world_def wd = sleepy_def((carom_method)m, 4);
+        carom_body_def bd = carom_default_body_def();
+        tw t;
+        int ball, left, right;
+        wd.gravity.y = 0.0f;
+        t = tw_make(&wd);
+        bd.type = CAROM_BODY_STATIC;
+        carom_body_def_set_box(&bd, 0.1f, 2.0f);
+        bd.position.x = 1.2f; /* its face at x = 1.1 */
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        bd.radius = 0.5f;
+        bd.restitution = 1.0f;
+        bd.velocity.x = 0.03f; /* reaches the wall at 20 s */
+        ball = tw_add(&t, &bd);
+        bd.position.y = 10.0f;
+        bd.position.x = -0.6f; /* 0.2 m apart: they meet at 10 s */
+        bd.velocity.x = 0.01f;
+        left = tw_add(&t, &bd);
+        bd.position.x = 0.6f;
+        bd.velocity.x = -0.01f;
+        right = tw_add(&t, &bd);
+        tw_steps(&t, 2400); /* 40 s: the ball is back where it started */
+        ck_assert_msg(carom_body_is_awake(t.w, ball), "%s: the ball sleeps",
+                      carom_method_name((carom_method)m));
+        ck_assert_close(tw_state(&t, ball).position.x, 0.0, 1e-3);
+        ck_assert_close(tw_state(&t, ball).velocity.x, -0.03, 1e-6);
+        /* 20 s after they met, 10 cm past where they started */
+        ck_assert_close(tw_state(&t, left).position.x, -0.8, 1e-3);
+        ck_assert_close(tw_state(&t, left).velocity.x, -0.01, 1e-6);
+        ck_assert_close(tw_state(&t, right).position.x, 0.8, 1e-3);
+        ck_assert_close(tw_state(&t, right).velocity.x, 0.01, 1e-6);
+        tw_free(&t);
+    }
+}
+END_TEST
+
 Suite *suite_island(void)
 {
     Suite *s = suite_create("island");
@@ -212,6 +262,7 @@ Suite *suite_island(void)
     tcase_add_test(tc, test_still_islands_whose_boxes_meet_fall_asleep);
     tcase_add_test(tc, test_piles_of_any_size_fall_asleep);
     tcase_add_test(tc, test_leaning_tower_past_its_edge_falls_asleep_or_not);
+    tcase_add_test(tc, test_slow_bodies_in_zero_gravity_do_not_sleep_short_of_an_impact);
     suite_add_tcase(s, tc);
     return s;
 }
