@@ -266,6 +266,21 @@ run run "$tmp/missing.scene"
 expect_rc 2 "missing scene file"
 stderr_has "$tmp/missing.scene" "missing file: stderr names the file"
 
+# ---- output that cannot be written ----------------------------------------------
+
+# Standard output on a full device: the report is lost, so the run fails
+# (exit 1, as for a --trace file that cannot be written), for every
+# command that writes its result there.
+if [ -w /dev/full ]; then
+    for cmd in run profile "profile --json"; do
+        # shellcheck disable=SC2086 # split "profile --json" on purpose
+        "$cli" $cmd "$default_scene" >/dev/full 2>"$tmp/err"
+        rc=$?
+        expect_rc 1 "$cmd to a full standard output"
+        stderr_has "error writing standard output" "$cmd to a full standard output: stderr says so"
+    done
+fi
+
 # ---- bad options ---------------------------------------------------------------
 
 for args in "--steps abc" "--steps -1" "--steps 1.5" "--dt 0" "--dt -0.1" \

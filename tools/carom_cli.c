@@ -1287,6 +1287,12 @@ done:
         fprintf(stderr, "carom: error writing '%s'\n", o.output_path);
         rc = EXIT_SIM;
     }
+    /* the report and final state on standard output (a full disk, a
+     * closed pipe's reader): lost output is a failure, as for files */
+    if ((fflush(stdout) != 0 || ferror(stdout)) && rc == 0) {
+        fprintf(stderr, "carom: error writing standard output\n");
+        rc = EXIT_SIM;
+    }
     recorder_free(&rec);
     scene_free_world(w, mem);
     scene_free(&s);
