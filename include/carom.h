@@ -85,7 +85,9 @@ extern "C" {
 #define CAROM_VERSION_MINOR 2
 #define CAROM_VERSION_PATCH 0
 
-/** Pass in a world definition field to have carom derive the value. */
+/** Pass in a world definition field to have carom derive the value
+ * (length_unit, rest_speed, linear_slop: exactly this value; any other
+ * negative value is refused with CAROM_ERR_OUT_OF_RANGE). */
 #define CAROM_AUTO (-1.0f)
 
 typedef struct carom_vec2 {

@@ -112,7 +112,12 @@ carom_status carom_world_def_validate(const carom_world_def *d)
         d->iterations > CR_MAX_ITERATIONS || d->relax_iterations < 0 ||
         d->relax_iterations > CR_MAX_ITERATIONS || cr_lt(d->sleep_time, 0.0f))
         return CAROM_ERR_BAD_PARAMETER;
-    /* lengths and speeds: CAROM_AUTO (negative) or within the limits */
+    /* lengths and speeds: CAROM_AUTO or within the limits; another
+     * negative value is a mistake (a sign error), not a wish for auto */
+    if ((cr_lt(d->length_unit, 0.0f) && !cr_eq(d->length_unit, CAROM_AUTO)) ||
+        (cr_lt(d->linear_slop, 0.0f) && !cr_eq(d->linear_slop, CAROM_AUTO)) ||
+        (cr_lt(d->rest_speed, 0.0f) && !cr_eq(d->rest_speed, CAROM_AUTO)))
+        return CAROM_ERR_OUT_OF_RANGE;
     if (cr_gt(d->length_unit, CAROM_LIMIT_MAX_LENGTH) ||
         cr_gt(d->linear_slop, CAROM_LIMIT_MAX_LENGTH) ||
         cr_gt(d->rest_speed, CAROM_LIMIT_MAX_SPEED) ||

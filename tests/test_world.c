@@ -51,6 +51,11 @@ START_TEST(test_bad_world_defs_get_their_status)
     EXPECT(d.max_contacts = -1, CAROM_ERR_BAD_CAPACITY);
     EXPECT(d.max_bodies = (1 << CAROM_ID_INDEX_BITS) + 1, CAROM_ERR_BAD_CAPACITY);
     EXPECT(d.length_unit = 1.0e-9f, CAROM_ERR_OUT_OF_RANGE);
+    /* negative: CAROM_AUTO (-1) only, never another negative value */
+    EXPECT(d.length_unit = -5.0f, CAROM_ERR_OUT_OF_RANGE);
+    EXPECT(d.linear_slop = -0.5f, CAROM_ERR_OUT_OF_RANGE);
+    EXPECT(d.rest_speed = -2.0f, CAROM_ERR_OUT_OF_RANGE);
+    EXPECT(d.rest_speed = -1.0e-30f, CAROM_ERR_OUT_OF_RANGE);
     EXPECT(d.method = (carom_method)17, CAROM_ERR_BAD_METHOD);
 #undef EXPECT
     ck_assert_int_eq(carom_world_def_validate(NULL), CAROM_ERR_NULL);
