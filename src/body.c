@@ -406,6 +406,8 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
     in.sleep_x = b.x;
     in.sleep_q = b.q;
     in.sleep_window = 0.0f;
+    in.sleep_travel = 0.0f;
+    in.sleep_away = 0.0f;
     in.still_speed = 0.0f;
     in.still_max = 0.0f;
     b.sleep_island = -1;

@@ -92,6 +92,8 @@ typedef struct cr_body_info {
     cr_v2 sleep_x;             /* sleep (island.c): the pose at the start */
     cr_rot sleep_q;            /* of the window of its mean speed, */
     float sleep_window;        /* the window's length so far */
+    float sleep_travel;        /* how far it had gone in it last step */
+    float sleep_away;          /* s it has gone further every step */
     float still_speed;         /* the slowest speed since still_time began */
     float still_max;           /* and the fastest */
 } cr_body_info;

@@ -38,6 +38,8 @@ static void cr_window_restart(carom_world *w, int slot)
     in->sleep_x = w->bodies[slot].x;
     in->sleep_q = w->bodies[slot].q;
     in->sleep_window = 0.0f;
+    in->sleep_travel = 0.0f;
+    in->sleep_away = 0.0f;
 }
 
 void cr_island_wake(carom_world *w, int slot)
@@ -146,8 +148,22 @@ static int cr_slow_on_average(carom_world *w, int id, float dt)
         cr_window_restart(w, id);
         return 0;
     }
+    /* A body rocking about a place comes back towards where its window
+     * started; one sliding or tipping away goes further every step. One
+     * that has gone further in every step for half a window is moving
+     * off, however slowly on average: a box released on an incline 0.1
+     * degree steeper than its friction angle slides off at 0.02 m/s^2,
+     * 0.16 m in its first 4 s, within the window's bound (0.32 m), and
+     * slept sliding at 0.087 m/s. Such a body is still only if it is
+     * slow now (the caller's speed test). */
+    if (cr_gt(travel, in->sleep_travel))
+        in->sleep_away = cr_add(in->sleep_away, dt);
+    else
+        in->sleep_away = 0.0f;
+    in->sleep_travel = travel;
     in->sleep_window = cr_add(in->sleep_window, dt);
-    return !cr_lt(in->sleep_window, window);
+    return !cr_lt(in->sleep_window, window) &&
+           cr_lt(in->sleep_away, cr_mul(0.5f, window));
 }
 #endif
 

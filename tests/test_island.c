@@ -254,6 +254,55 @@ START_TEST(test_slow_bodies_in_zero_gravity_do_not_sleep_short_of_an_impact)
 }
 END_TEST
 
+/*
+ * A box released on an incline 0.1 degree steeper than its friction
+ * angle (mu = 0.5), sleeping on: it slides off at a = g (sin th - mu cos th)
+ * = 0.0195 m/s^2, a T^2 / 2 = 0.976 m in 10 s (computed here in double).
+ * Its first 4 s took it 0.16 m, within the mean-speed window's bound
+ * (sleep speed x 4 s = 0.32 m), and it slept sliding at 0.087 m/s, 0.2 m
+ * down the slope: a body that goes further from where its window started
+ * in every step is moving off, not rocking.
+ */
+START_TEST(test_box_sliding_slowly_off_an_incline_does_not_sleep)
+{
+    const double mu = 0.5, th = atan(mu) + 0.1 * 3.14159265358979 / 180.0;
+    const double a = 10.0 * (sin(th) - mu * cos(th)), T = 10.0;
+    const float c = (float)cos(th), sn = (float)sin(th);
+    int m;
+    for (m = 0; m < CAROM_METHOD_COUNT; ++m) {
+        carom_world_def wd = sleepy_def((carom_method)m, 2);
+        carom_body_def bd = carom_default_body_def();
+        tw t = tw_make(&wd);
+        carom_vec2 p0, p1;
+        int box;
+        double d;
+        /* the slope's top face through the origin, along (c, sn) */
+        bd.type = CAROM_BODY_STATIC;
+        carom_body_def_set_box(&bd, 6.0f, 0.25f);
+        bd.rotation.c = c;
+        bd.rotation.s = sn;
+        bd.position.x = 0.25f * sn - 4.0f * c;
+        bd.position.y = -0.25f * c - 4.0f * sn;
+        bd.friction = (float)mu;
+        tw_add(&t, &bd);
+        carom_body_def_set_box(&bd, 1.0f, 0.5f);
+        bd.type = CAROM_BODY_DYNAMIC;
+        bd.position.x = -0.5f * sn;
+        bd.position.y = 0.5f * c;
+        box = tw_add(&t, &bd);
+        p0 = tw_state(&t, box).position;
+        tw_steps(&t, 600);
+        p1 = tw_state(&t, box).position;
+        d = hypot((double)p1.x - p0.x, (double)p1.y - p0.y);
+        ck_assert_msg(fabs(d - a * T * T / 2.0) < 0.01 * a * T * T / 2.0,
+                      "%s: slid %g m in 10 s, not %g (asleep: %d)",
+                      carom_method_name((carom_method)m), d, a * T * T / 2.0,
+                      !carom_body_is_awake(t.w, box));
+        tw_free(&t);
+    }
+}
+END_TEST
+
 Suite *suite_island(void)
 {
     Suite *s = suite_create("island");
@@ -263,6 +312,7 @@ Suite *suite_island(void)
     tcase_add_test(tc, test_piles_of_any_size_fall_asleep);
     tcase_add_test(tc, test_leaning_tower_past_its_edge_falls_asleep_or_not);
     tcase_add_test(tc, test_slow_bodies_in_zero_gravity_do_not_sleep_short_of_an_impact);
+    tcase_add_test(tc, test_box_sliding_slowly_off_an_incline_does_not_sleep);
     suite_add_tcase(s, tc);
     return s;
 }
