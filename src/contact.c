@@ -36,15 +36,19 @@ static float cr_lever(const cr_shape *s, cr_v2 r, cr_v2 dir, int normal)
 
 /* How far two bodies can close in over time h: the sum of their speeds
  * (not their relative speed: two bodies falling side by side meet when the
- * lower one lands), plus each body's spin times its extent, plus the
- * relative acceleration's h^2 / 2. */
+ * lower one lands), plus each body's spin times its extent, plus h^2 / 2
+ * times the larger of their relative acceleration and either body's own
+ * (a body resting on a support does not fall: one dropped onto it falls
+ * g h^2 / 2 closer, where the relative acceleration says 0; a 1 mm box
+ * released 0.2 mm above another resting on the floor, under 9.81 m/s^2
+ * at dt = 1/60, fell 1.4 mm into it in the step, unseen). */
 float cr_pair_reach(const carom_world *w, int a, int b, float h)
 {
     const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
     float ea = w->info[a].shape.extent, eb = w->info[b].shape.extent;
     float speed = cr_add(cr_add(cr_vlen(A->v), cr_vlen(B->v)),
                          cr_add(cr_mul(cr_abs(A->w), ea), cr_mul(cr_abs(B->w), eb)));
-    float acc = cr_vlen(cr_vsub(B->a, A->a));
+    float acc = cr_max(cr_vlen(cr_vsub(B->a, A->a)), cr_max(cr_vlen(A->a), cr_vlen(B->a)));
     return cr_add(w->scale.spec,
                   cr_add(cr_mul(speed, h), cr_mul(cr_mul(0.5f, acc), cr_mul(h, h))));
 }
