@@ -105,8 +105,6 @@
  * (cr_limit_impact_energy) acts. */
 #define CR_IMPACT_ENERGY_TOL 1.0e-4f
 
-/* Approach below this fraction of the bodies' speeds is rounding. */
-#define CR_APPROACH_REL_TOL 1.0e-4f
 
 
 /* Smallest det(K) / (k11 k22) for which a 2-point row is solved as a block
@@ -272,7 +270,7 @@ static int cr_solved_contact(const carom_world *w, const cr_pair *p)
 /* The approach speed above which the pair is an impact. */
 static float cr_impact_speed(const carom_world *w, int a, int b, float scale)
 {
-    return cr_add(cr_rest_speed(w, a, b), cr_mul(CR_APPROACH_REL_TOL, scale));
+    return cr_add(cr_rest_speed(w, a, b), cr_mul(CR_IMPACT_REL_TOL, scale));
 }
 
 /* A polygon of the pair turning so fast that its extent sweeps more

@@ -176,9 +176,21 @@ int cr_solver_classify(carom_world *w, int events)
          * loop takes it at its instant; but a resting contact (touching
          * and pushing since the last step) stays the solver's, or a
          * settling pile would turn into a storm of micro-collisions */
-        if (events && !(c->flags & (CR_CONTACT_RESTING | CR_CONTACT_UNSETTLED)))
-            take = !cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b)) &&
+        if (events && !(c->flags & (CR_CONTACT_RESTING | CR_CONTACT_UNSETTLED))) {
+            /* the event search's bound (cr_impact_speed in events.c):
+             * an approach it calls rounding is the solver's. Two bodies
+             * overlapping by 9 mm, closing at 4e-5 m/s while both moved
+             * at 10 m/s, were left here to the impacts and there to the
+             * solver, after this step's solve: neither, for ever, and
+             * they sank into each other */
+            float scale = cr_add(cr_add(cr_vlen(A->v), cr_vlen(B->v)),
+                                 cr_add(cr_mul(cr_abs(A->w), w->info[c->a].shape.extent),
+                                        cr_mul(cr_abs(B->w), w->info[c->b].shape.extent)));
+            take = !cr_gt(cr_contact_approach(w, c),
+                          cr_add(cr_rest_speed(w, c->a, c->b),
+                                 cr_mul(CR_IMPACT_REL_TOL, scale))) &&
                    !cr_turns_fast(w, A) && !cr_turns_fast(w, B);
+        }
         if (take) {
             c->flags |= CR_CONTACT_SOLVE;
             if (cr_moves(A))

@@ -89,6 +89,12 @@ float cr_contact_approach(const carom_world *w, const cr_contact *c);
 /* The approach speed above which contact (a, b) is an impact. */
 float cr_rest_speed(const carom_world *w, int a, int b);
 
+/* An approach below this fraction of the bodies' speeds is rounding, not
+ * an impact: the event search (events.c) and the solver's share of the
+ * contacts (cr_solver_classify) use the same bound, or a pair could fall
+ * between them. */
+#define CR_IMPACT_REL_TOL 1.0e-4f
+
 /* Kinetic energy of a body of info `in` at velocity (v, om). */
 float cr_kinetic(const cr_body_info *in, cr_v2 v, float om);
 

@@ -1555,6 +1555,53 @@ START_TEST(test_impulse_into_a_sleeping_body_mid_step_wakes_it_next_step)
 }
 END_TEST
 
+/*
+ * Zero gravity: circles of radius 0.5 and 0.1 (density 1) overlapping by
+ * 8.8 mm, both moving at 10 m/s and closing at 4e-5 m/s, elastic and
+ * frictionless. The approach is under the event search's rounding bound
+ * (1e-4 of the bodies' speeds), so no impact; the solver must push them
+ * apart. The solver's share of the contacts used the bare rest speed (0
+ * here) and left the pair to the impacts, which left it to the solver
+ * after the step's solve: nothing touched it, and in every events method
+ * the overlap grew for as long as the run went on. Now, in every
+ * method, the two end touching, with their momentum (computed here).
+ */
+START_TEST(test_overlap_closing_slower_than_rounding_is_pushed_apart)
+{
+    const double pi = 3.14159265358979, ma = pi * 0.25, mb = pi * 0.01;
+    const double p0 = ma * -10.0 + mb * -10.00004;
+    int m;
+    for (m = 0; m < CAROM_METHOD_COUNT; ++m) {
+        carom_world_def wd = carom_default_world_def();
+        carom_body_def bd = carom_default_body_def();
+        carom_body_state a, b;
+        tw t;
+        wd.method = (carom_method)m;
+        wd.max_bodies = 2;
+        wd.gravity.y = 0.0f;
+        wd.enable_sleep = 0;
+        t = tw_make(&wd);
+        bd.radius = 0.5f;
+        bd.restitution = 1.0f;
+        bd.friction = 0.0f;
+        bd.velocity.x = -10.0f;
+        tw_add(&t, &bd);
+        bd.radius = 0.1f;
+        bd.position.x = 0.5911542f;
+        bd.velocity.x = -10.00004f;
+        tw_add(&t, &bd);
+        tw_steps(&t, 200);
+        a = tw_state(&t, 0);
+        b = tw_state(&t, 1);
+        ck_assert_msg(b.position.x - a.position.x > 0.599f,
+                      "%s: centres %g m apart after 200 steps (0.6: touching)",
+                      carom_method_name((carom_method)m), (double)(b.position.x - a.position.x));
+        ck_assert_close(ma * a.velocity.x + mb * b.velocity.x, p0, 1e-4 * fabs(p0));
+        tw_free(&t);
+    }
+}
+END_TEST
+
 Suite *suite_events(void)
 {
     Suite *s = suite_create("events");
@@ -1574,6 +1621,7 @@ Suite *suite_events(void)
     tcase_add_test(tn, test_triangle_pivoting_off_a_slow_corner_stays_out_of_the_floor);
     tcase_add_test(tn, test_spinning_boxes_meeting_on_a_pivot_do_not_pass_into_each_other);
     tcase_add_test(tc, test_isolated_bodies_conserve_momentum);
+    tcase_add_test(tc, test_overlap_closing_slower_than_rounding_is_pushed_apart);
     tcase_add_loop_test(tc, test_pressed_clusters_conserve_momentum, 0, 24);
     tcase_add_test(tc, test_impulse_into_a_sleeping_body_mid_step_wakes_it_next_step);
     tcase_add_test(tc, test_polygon_hit_off_centre_conserves_linear_and_angular_momentum);
