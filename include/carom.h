@@ -306,7 +306,8 @@ typedef struct carom_body_def {
     float mass;               /**< kg; 0: from density; > 0 overrides density */
     float restitution;        /**< [0, 1]; default 0. A contact uses the
                                    larger of its two bodies' values */
-    float friction;           /**< >= 0; default 0.6. A contact uses
+    float friction;           /**< 0 ... CAROM_LIMIT_MAX_FRICTION (1e6);
+                                   default 0.6. A contact uses
                                    sqrt(friction_a friction_b) */
     carom_vec2 force;         /**< constant force at the centre, N */
     float torque;             /**< constant torque, N m */
@@ -354,7 +355,8 @@ typedef enum carom_status {
                                        [CAROM_LIMIT_MIN_MASS,
                                        CAROM_LIMIT_MAX_MASS] */
     CAROM_ERR_BAD_RESTITUTION,    /**< restitution outside [0, 1] */
-    CAROM_ERR_BAD_FRICTION,       /**< friction < 0 */
+    CAROM_ERR_BAD_FRICTION,       /**< friction < 0 or above
+                                       CAROM_LIMIT_MAX_FRICTION (1e6) */
     CAROM_ERR_BAD_ROTATION,       /**< rotation pair (0, 0), or too short
                                        or long to normalize (c^2 + s^2
                                        below FLT_MIN or not finite) */
@@ -508,8 +510,8 @@ carom_status carom_body_apply_force(carom_world *w, int id, carom_vec2 force,
 /** Apply a torque (N m) during the next step only. Calls add up. */
 carom_status carom_body_apply_torque(carom_world *w, int id, float torque);
 
-/** Restitution in [0, 1] and friction >= 0 after creation (the same rules
- * as in the definition). */
+/** Restitution in [0, 1] and friction in [0, CAROM_LIMIT_MAX_FRICTION]
+ * after creation (the same rules as in the definition). */
 carom_status carom_body_set_restitution(carom_world *w, int id, float e);
 carom_status carom_body_set_friction(carom_world *w, int id, float mu);
 

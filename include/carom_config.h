@@ -232,6 +232,12 @@
 #ifndef CAROM_LIMIT_MAX_MASS
 #define CAROM_LIMIT_MAX_MASS 1.0e20f /**< kg (and kg m^2 for inertia) */
 #endif
+#ifndef CAROM_LIMIT_MAX_FRICTION
+#define CAROM_LIMIT_MAX_FRICTION 1.0e6f /**< largest friction coefficient
+                                             (real ones are below 2; at
+                                             1e20 the friction impulses
+                                             overflowed in the first step) */
+#endif
 #ifndef CAROM_LIMIT_MIN_DT
 #define CAROM_LIMIT_MIN_DT 1.0e-7f /**< s: smallest time step */
 #endif

@@ -469,7 +469,7 @@ carom_status carom_body_set_friction(carom_world *w, int id, float mu)
         return st;
     if (!cr_finite(mu))
         return CAROM_ERR_NOT_FINITE;
-    if (cr_lt(mu, 0.0f))
+    if (cr_lt(mu, 0.0f) || cr_gt(mu, CAROM_LIMIT_MAX_FRICTION))
         return CAROM_ERR_BAD_FRICTION;
 #if !CAROM_ENABLE_FRICTION
     if (cr_gt(mu, 0.0f))

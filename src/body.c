@@ -328,7 +328,7 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
         return CAROM_ERR_NOT_FINITE;
     if (!cr_le(0.0f, def->restitution) || !cr_le(def->restitution, 1.0f))
         return CAROM_ERR_BAD_RESTITUTION;
-    if (cr_lt(def->friction, 0.0f))
+    if (cr_lt(def->friction, 0.0f) || cr_gt(def->friction, CAROM_LIMIT_MAX_FRICTION))
         return CAROM_ERR_BAD_FRICTION;
     if (cr_lt(def->mass, 0.0f))
         return CAROM_ERR_BAD_MASS;

@@ -23,7 +23,7 @@ static const char *const cr_status_names[CAROM_STATUS_COUNT] = {
     "mass must be >= 0 (0: from density), with mass and inertia in "
     "[CAROM_LIMIT_MIN_MASS, CAROM_LIMIT_MAX_MASS]",
     "restitution must be in [0, 1]",
-    "friction must be >= 0",
+    "friction must be >= 0 and <= CAROM_LIMIT_MAX_FRICTION (1e6)",
     "rotation must be a (cos, sin) pair of length about 1 (c^2 + s^2 between FLT_MIN and FLT_MAX)",
     "polygon needs at least 3 vertices",
     "polygon has more than CAROM_MAX_POLYGON_VERTICES vertices",

@@ -184,6 +184,7 @@ START_TEST(test_material_and_user_data_setters)
     ck_assert_int_eq(carom_body_set_restitution(t.w, ground, 0.5f), CAROM_OK);
     ck_assert_int_eq(carom_body_set_restitution(t.w, b, 1.5f), CAROM_ERR_BAD_RESTITUTION);
     ck_assert_int_eq(carom_body_set_friction(t.w, b, -1.0f), CAROM_ERR_BAD_FRICTION);
+    ck_assert_int_eq(carom_body_set_friction(t.w, b, 1.0e20f), CAROM_ERR_BAD_FRICTION);
     ck_assert_int_eq(carom_body_set_friction(t.w, b, 0.2f), CAROM_OK);
     /* dropped 2 m with e = 0.5: it rebounds to 2 e^2 = 0.5 m */
     for (k = 0; k < 100; ++k) {

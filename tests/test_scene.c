@@ -680,6 +680,7 @@ START_TEST(test_scene_rejects_malformed_number)
     expect_body_error("circle radius=1.2.3", "'1.2.3'");
     expect_body_error("circle angle=abc", "angle: malformed number 'abc'");
     expect_body_error("circle friction=1e", "friction: malformed number '1e'");
+    expect_body_error("circle friction=1e20", "friction: must be in [0, 1e+06], got 1e20");
     expect_body_error("circle torque=1.2.3", "torque: malformed number");
     expect_world_error("dt=1e", "dt: malformed number '1e'");
     expect_world_error("rest-speed=abc", "rest-speed: malformed number");
@@ -776,7 +777,7 @@ START_TEST(test_scene_rejects_out_of_range_restitution_and_friction)
     expect_body_error("circle restitution=1.5", "restitution: must be in [0, 1], got 1.5");
     expect_body_error("circle restitution=-0.1", "restitution: must be in [0, 1]");
     expect_body_error("circle restitution=1.0001", "restitution: must be in [0, 1]");
-    expect_body_error("circle friction=-0.1", "friction: must be >= 0, got -0.1");
+    expect_body_error("circle friction=-0.1", "friction: must be in [0, 1e+06], got -0.1");
 }
 END_TEST
 

@@ -181,6 +181,7 @@ START_TEST(test_bad_body_fields_get_their_status)
     EXPECT(bd.restitution = 1.5f, CAROM_ERR_BAD_RESTITUTION);
     EXPECT(bd.restitution = -0.1f, CAROM_ERR_BAD_RESTITUTION);
     EXPECT(bd.friction = -1.0f, CAROM_ERR_BAD_FRICTION);
+    EXPECT(bd.friction = 2.0e6f, CAROM_ERR_BAD_FRICTION);
     EXPECT(bd.position.x = NAN, CAROM_ERR_NOT_FINITE);
     EXPECT(bd.velocity.y = INFINITY, CAROM_ERR_NOT_FINITE);
     EXPECT(bd.radius = NAN, CAROM_ERR_NOT_FINITE);

@@ -398,8 +398,9 @@ static int parse_body(parser *p, char *rest, scene *s)
         } else if (strcmp(key, "friction") == 0) {
             if (seen_before(p, &seen, K_FRIC, key) || parse_float(p, key, val, &d->friction))
                 return -1;
-            if (!(d->friction >= 0.0f))
-                return fail(p, "friction: must be >= 0, got %s", val);
+            if (!(d->friction >= 0.0f) || d->friction > CAROM_LIMIT_MAX_FRICTION)
+                return fail(p, "friction: must be in [0, %g], got %s",
+                            (double)CAROM_LIMIT_MAX_FRICTION, val);
         } else if (strcmp(key, "force") == 0) {
             if (seen_before(p, &seen, K_FORCE, key) || parse_vec(p, key, val, &d->force))
                 return -1;
