@@ -283,6 +283,22 @@ fi
 
 # ---- bad options ---------------------------------------------------------------
 
+# --dt outside carom's range names the option, not the scene; a world
+# value outside it names its key and the range.
+run run "$default_scene" --dt 100
+expect_rc 2 "--dt 100"
+stderr_has "--dt: the time step must be in [1e-07, 10] s" "--dt 100: stderr names the option and the range"
+for kv in "dt=100|dt=100: the time step must be in [1e-07, 10] s" \
+          "gravity=0,-1e13|gravity=0,-1e+13: each component must be within 1e+12 m/s^2" \
+          "rest-speed=1e9|rest-speed=1e+09: must be auto or in [0, 1e+08] m/s" \
+          "slop=1e9|slop=1e+09: must be auto or in [0, 1e+08] m" \
+          "length-unit=1e-7|length-unit=1e-07: must be auto or in [1e-06, 1e+08] m"; do
+    printf 'carom-scene 1\nworld %s\nbody circle radius=1\n' "${kv%%|*}" >"$tmp/range.scene"
+    run run "$tmp/range.scene"
+    expect_rc 2 "world ${kv%%|*}"
+    stderr_has "world: ${kv#*|}" "world ${kv%%|*}: stderr names the key and the range"
+done
+
 for args in "--steps abc" "--steps -1" "--steps 1.5" "--dt 0" "--dt -0.1" \
             "--dt nan" "--dt inf" "--dt abc" "--method bogus"; do
     # shellcheck disable=SC2086 # split "--opt value" on purpose

@@ -241,8 +241,17 @@ static int apply_option(sim_opts *o, const cli_parser *p)
     switch ((opt_id)p->opt->id) {
     case OPT_STEPS:
         return cli_long(p, 0, 1000000000L, NULL, &o->steps);
-    case OPT_DT:
-        return cli_double(p, 0.0, CLI_OPEN, 1.0e30, "a finite number > 0", &o->dt);
+    case OPT_DT: {
+        /* carom's range (CAROM_LIMIT_MIN_DT ... _MAX_DT) for the float the
+         * world takes, checked here so that the message names the option,
+         * not the scene */
+        int rc = cli_double(p, 0.0, CLI_OPEN, 1.0e30, "a finite number > 0", &o->dt);
+        if (rc == 0 && !((float)o->dt >= CAROM_LIMIT_MIN_DT && (float)o->dt <= CAROM_LIMIT_MAX_DT))
+            return cli_usage_error("carom", "--dt: the time step must be in [%g, %g] s "
+                                   "(CAROM_LIMIT_MIN_DT, _MAX_DT), got '%s'",
+                                   (double)CAROM_LIMIT_MIN_DT, (double)CAROM_LIMIT_MAX_DT, v);
+        return rc;
+    }
     case OPT_METHOD: {
         carom_method m;
         if (carom_method_from_name(v, &m) != CAROM_OK)

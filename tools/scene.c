@@ -297,6 +297,52 @@ static const char *range_hint(const carom_body_def *d, char *buf, size_t len)
     return buf;
 }
 
+/* Which world value is outside carom's range, with its scene key and
+ * the limit: each tried alone on a default world (1 if found). */
+static int world_range_hint(const carom_world_def *wd, char *buf, size_t len)
+{
+    carom_world_def t = carom_default_world_def();
+    t.dt = wd->dt;
+    if (carom_world_def_validate(&t) != CAROM_OK) {
+        snprintf(buf, len, "dt=%g: the time step must be in [%g, %g] s "
+                 "(CAROM_LIMIT_MIN_DT, _MAX_DT)", (double)wd->dt,
+                 (double)CAROM_LIMIT_MIN_DT, (double)CAROM_LIMIT_MAX_DT);
+        return 1;
+    }
+    t = carom_default_world_def();
+    t.gravity = wd->gravity;
+    if (carom_world_def_validate(&t) != CAROM_OK) {
+        snprintf(buf, len, "gravity=%g,%g: each component must be within %g m/s^2 "
+                 "(CAROM_LIMIT_MAX_ACCEL)", (double)wd->gravity.x, (double)wd->gravity.y,
+                 (double)CAROM_LIMIT_MAX_ACCEL);
+        return 1;
+    }
+    t = carom_default_world_def();
+    t.length_unit = wd->length_unit;
+    if (carom_world_def_validate(&t) != CAROM_OK) {
+        snprintf(buf, len, "length-unit=%g: must be auto or in [%g, %g] m "
+                 "(CAROM_LIMIT_MIN_SIZE, _MAX_LENGTH)", (double)wd->length_unit,
+                 (double)CAROM_LIMIT_MIN_SIZE, (double)CAROM_LIMIT_MAX_LENGTH);
+        return 1;
+    }
+    t = carom_default_world_def();
+    t.linear_slop = wd->linear_slop;
+    if (carom_world_def_validate(&t) != CAROM_OK) {
+        snprintf(buf, len, "slop=%g: must be auto or in [0, %g] m (CAROM_LIMIT_MAX_LENGTH)",
+                 (double)wd->linear_slop, (double)CAROM_LIMIT_MAX_LENGTH);
+        return 1;
+    }
+    t = carom_default_world_def();
+    t.rest_speed = wd->rest_speed;
+    if (carom_world_def_validate(&t) != CAROM_OK) {
+        snprintf(buf, len, "rest-speed=%g: must be auto or in [0, %g] m/s "
+                 "(CAROM_LIMIT_MAX_SPEED)", (double)wd->rest_speed,
+                 (double)CAROM_LIMIT_MAX_SPEED);
+        return 1;
+    }
+    return 0;
+}
+
 static int parse_body(parser *p, char *rest, scene *s)
 {
     char *tok, *save = NULL;
@@ -712,7 +758,11 @@ int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
         }
     }
     if (st != CAROM_OK) {
-        snprintf(err, errlen, "world: %s", carom_status_string(st));
+        char hint[160];
+        if (world_range_hint(&wd, hint, sizeof hint))
+            snprintf(err, errlen, "world: %s", hint);
+        else
+            snprintf(err, errlen, "world: %s", carom_status_string(st));
         return -1;
     }
     bytes = carom_world_buffer_size(&wd);
