@@ -218,7 +218,7 @@ help:
 	@echo "carom: make targets (variables: BUILD=$(BUILD) CC=$(CC) PREFIX=$(PREFIX) DESTDIR= SCENE= CAROM_FLAGS=)"
 	@echo ""
 	@echo "build"
-	@echo "  make all             the default (plain make): $(LIB), $(CLI), and $(BOX2D_BIN) if Box2D is installed"
+	@echo "  make all             the default (plain make): $(LIB), $(CLI), $(BUILD)/examples/, and $(BOX2D_BIN) if Box2D is installed"
 	@echo "  make lib             $(LIB) only"
 	@echo "  make cli             $(CLI) only (linked with the profiling build, $(PROF_LIB))"
 	@echo "  make shared          $(SHLIB) (soname $(SONAME), -fPIC objects in $(BUILD)/pic/) and its symlinks"
