@@ -220,7 +220,10 @@ void cr_island_sleep(carom_world *w, float dt)
             b->still_time = 0.0f;
             continue;
         }
-        if (!can_sleep[id]) {
+        /* (a body not moving at all is at rest held or not: sleeping
+         * changes nothing of it, and a rack of touching balls in zero
+         * gravity sleeps until the break) */
+        if (!can_sleep[id] && !cr_eq(speed, 0.0f)) {
             b->still_time = 0.0f;
             cr_window_restart(w, id);
             continue;
