@@ -42,12 +42,18 @@ static float cr_lever(const cr_shape *s, cr_v2 r, cr_v2 dir, int normal)
  * g h^2 / 2 closer, where the relative acceleration says 0; a 1 mm box
  * released 0.2 mm above another resting on the floor, under 9.81 m/s^2
  * at dt = 1/60, fell 1.4 mm into it in the step, unseen). */
+float cr_pair_speed(const carom_world *w, int a, int b)
+{
+    const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
+    return cr_add(cr_add(cr_vlen(A->v), cr_vlen(B->v)),
+                  cr_add(cr_mul(cr_abs(A->w), w->info[a].shape.extent),
+                         cr_mul(cr_abs(B->w), w->info[b].shape.extent)));
+}
+
 float cr_pair_reach(const carom_world *w, int a, int b, float h)
 {
     const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
-    float ea = w->info[a].shape.extent, eb = w->info[b].shape.extent;
-    float speed = cr_add(cr_add(cr_vlen(A->v), cr_vlen(B->v)),
-                         cr_add(cr_mul(cr_abs(A->w), ea), cr_mul(cr_abs(B->w), eb)));
+    float speed = cr_pair_speed(w, a, b);
     float acc = cr_max(cr_vlen(cr_vsub(B->a, A->a)), cr_max(cr_vlen(A->a), cr_vlen(B->a)));
     return cr_add(w->scale.spec,
                   cr_add(cr_mul(speed, h), cr_mul(cr_mul(0.5f, acc), cr_mul(h, h))));

@@ -142,6 +142,11 @@ CR_INLINE cr_v2 cr_point_velocity(cr_v2 v, float w, cr_v2 r)
  * distance: the reach of their contact. */
 float cr_pair_reach(const carom_world *w, int a, int b, float h);
 
+/* The sum of the two bodies' speeds and spins times extents: the most
+ * their surfaces can close in per second (cr_pair_reach), and the scale
+ * of the rounding in their approach (cr_solver_classify). */
+float cr_pair_speed(const carom_world *w, int a, int b);
+
 /* Constraint data of contact c (a, b set) from manifold m at the bodies'
  * current poses; impulses start at zero. */
 void cr_contact_from_manifold(const carom_world *w, cr_contact *c,

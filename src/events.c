@@ -105,8 +105,6 @@
  * (cr_limit_impact_energy) acts. */
 #define CR_IMPACT_ENERGY_TOL 1.0e-4f
 
-
-
 /* Smallest det(K) / (k11 k22) for which a 2-point row is solved as a block
  * (1 - cos^2 of the angle between the two points' impulse rows). */
 #define CR_BLOCK_MIN_DET 1.0e-3f

@@ -183,12 +183,9 @@ int cr_solver_classify(carom_world *w, int events)
              * at 10 m/s, were left here to the impacts and there to the
              * solver, after this step's solve: neither, for ever, and
              * they sank into each other */
-            float scale = cr_add(cr_add(cr_vlen(A->v), cr_vlen(B->v)),
-                                 cr_add(cr_mul(cr_abs(A->w), w->info[c->a].shape.extent),
-                                        cr_mul(cr_abs(B->w), w->info[c->b].shape.extent)));
             take = !cr_gt(cr_contact_approach(w, c),
                           cr_add(cr_rest_speed(w, c->a, c->b),
-                                 cr_mul(CR_IMPACT_REL_TOL, scale))) &&
+                                 cr_mul(CR_IMPACT_REL_TOL, cr_pair_speed(w, c->a, c->b)))) &&
                    !cr_turns_fast(w, A) && !cr_turns_fast(w, B);
         }
         if (take) {
