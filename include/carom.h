@@ -41,7 +41,7 @@
  *  - Switches, limits and the valid input ranges: carom_config.h.
  *
  * SECTIONS: types -- status -- rotation helpers -- world life cycle --
- *           bodies -- stepping -- reading results -- profiling.
+ *           bodies -- stepping -- reading results -- queries -- profiling.
  *
  * A minimal program (a ball dropped on a floor; prints "ball at 0 0.5"):
  *
@@ -232,8 +232,14 @@ typedef struct carom_world_def {
                                    CAROM_MIN_IMPACTS) */
     float length_unit;        /**< m; CAROM_AUTO (default): the mean
                                    equivalent radius sqrt(area / pi) of the
-                                   dynamic bodies. Scales every distance
-                                   tolerance (carom_config.h) */
+                                   dynamic bodies (asleep or awake); with
+                                   no dynamic body, that of all the bodies
+                                   (static and kinematic); with no body at
+                                   all, 1 m. Taken anew at every step (and
+                                   by carom_world_get_tolerances), so it
+                                   follows bodies added and removed.
+                                   Scales every distance tolerance
+                                   (carom_config.h) */
     float rest_speed;         /**< approach speed (m/s) below which contacts
                                    are resting, not impacts (no restitution,
                                    no event); CAROM_AUTO (default):
@@ -343,8 +349,12 @@ typedef enum carom_status {
                                        CAROM_LIMIT_MAX_DT] */
     CAROM_ERR_BAD_CAPACITY,       /**< a capacity <= 0 or too large */
     CAROM_ERR_BUFFER_TOO_SMALL,   /**< caller buffer smaller than needed */
-    CAROM_ERR_BAD_PARAMETER,      /**< substeps, max_substeps or iterations
-                                       out of range, sleep_time < 0 */
+    CAROM_ERR_BAD_PARAMETER,      /**< substeps, max_substeps, iterations
+                                       or relax_iterations out of range,
+                                       sleep_time < 0, grow.alloc without
+                                       grow.release or the reverse; an
+                                       unknown carom_op_weights_preset
+                                       name */
     CAROM_ERR_BAD_METHOD,         /**< unknown method */
     CAROM_ERR_BAD_BODY_TYPE,      /**< not static, dynamic or kinematic */
     CAROM_ERR_BAD_SHAPE,          /**< neither circle nor polygon */
@@ -563,14 +573,20 @@ const char *carom_method_name(carom_method method);
 float carom_world_time(const carom_world *w);
 long carom_world_step_count(const carom_world *w);
 
-/** Impacts of the last step, in time order; *count gets how many. */
+/** Impacts of the last step, in time order; *count gets how many. The
+ * array lives in the world's memory: what it holds is good until the next
+ * carom_world_step, which writes that step's impacts over it (none if the
+ * step fails). In a world that has grown (carom_world_def.grow), that step
+ * or carom_world_release (which empties the list) may also move or free
+ * the array: call this again after either, and copy what you keep. */
 const carom_event *carom_world_events(const carom_world *w, int *count);
 
 /** Impacts of the last step that did not fit in max_events. */
 int carom_world_events_dropped(const carom_world *w);
 
 /** Touches that began or ended in the last step (CAROM_ENABLE_TOUCH_EVENTS;
- * otherwise none); *count gets how many. */
+ * otherwise none); *count gets how many. The array holds as long as
+ * carom_world_events' does. */
 const carom_touch_event *carom_world_touch_events(const carom_world *w,
                                                   int *count);
 

@@ -231,6 +231,40 @@ awk -F, '$1 == "1" { found = 1; if (!($3 + 0 > 0)) bad = 1 } END { exit bad || !
     "$tmp/out"
 verdict $? "ball on a box: ball bounced back above the box"
 
+# A normal the library computes as (-1, -0) (a static box listed before
+# the ball that hits its face) is written -1,0: no CSV field is -0.
+cat >"$tmp/negzero.scene" <<'EOF'
+carom-scene 1
+world gravity=0,0 steps=40
+body box static half-extents=0.5,2 position=3,0
+body circle radius=0.5 position=0,0 velocity=5,0 restitution=1
+EOF
+run run "$tmp/negzero.scene" --events "$tmp/negzero_events.csv" --trace "$tmp/negzero_trace.csv"
+expect_rc 0 "a ball hitting the left face of a box"
+awk -F, 'NR == 2 { found = 1; if ($4 != "-1" || $5 != "0") bad = 1 }
+         END { exit bad || !found }' "$tmp/negzero_events.csv"
+verdict $? "--events: the normal (-1, -0) is written -1,0"
+check "--events, --trace, final state: no field is -0" \
+    test "$(cat "$tmp/negzero_events.csv" "$tmp/negzero_trace.csv" "$tmp/out" |
+            grep -c -E '(^|,)-0(,|$)')" -eq 0
+
+# '-' is not standard output for --trace and --events (standard output
+# holds the result): an option error, and no file named '-'.
+for opt in --trace --events; do
+    (cd "$tmp" && "$cli" run "$tmp/ball.scene" --steps 3 "$opt" - >"$tmp/out" 2>"$tmp/err")
+    rc=$?
+    expect_rc 2 "$opt -"
+    stderr_has "$opt: '-' (standard output) is not possible" "$opt -: stderr says '-' is refused"
+    check "$opt -: no file named '-'" test ! -e "$tmp/-"
+    check "$opt -: nothing on stdout" test ! -s "$tmp/out"
+done
+run run "$tmp/ball.scene" --steps 3 --trace "$tmp/./-"
+expect_rc 0 "--trace DIR/./- (a file named '-', written as a path)"
+check "--trace DIR/./-: the file is written" test -s "$tmp/-"
+rm -f "$tmp/-"
+run run --help
+check "--help: --trace says '-' is refused" grep -q "'-' is refused" "$tmp/out"
+
 # ---- bad scene files -----------------------------------------------------------
 
 cat >"$tmp/bad_key.scene" <<'EOF'
@@ -261,6 +295,26 @@ EOF
 run run "$tmp/bad_header.scene"
 expect_rc 2 "scene with an unsupported version"
 stderr_has "$tmp/bad_header.scene:1:" "unsupported version: stderr has FILE:1:"
+
+printf 'carom-scene 1 extra\n' >"$tmp/header_extra.scene"
+run run "$tmp/header_extra.scene"
+expect_rc 2 "header with text after the version"
+stderr_has "$tmp/header_extra.scene:1: the header line has trailing text after the version: 'extra'" \
+    "header with trailing text: stderr names the line and the text"
+check "header with trailing text: not called an unsupported version" \
+    test "$(grep -c unsupported "$tmp/err")" -eq 0
+
+# A mass or density that gives a mass or inertia outside carom's range:
+# the key, its value and the range, once.
+for kv in density=1e30 mass=1e-30; do
+    printf 'carom-scene 1\nbody circle radius=1 %s\n' "$kv" >"$tmp/mass.scene"
+    run run "$tmp/mass.scene"
+    expect_rc 2 "body $kv"
+    stderr_has "$tmp/mass.scene:2: body 0: $kv: a dynamic body's mass and moment of inertia must be in [1e-20, 1e+20]" \
+        "body $kv: stderr names the key, the value and the range"
+    check "body $kv: the range is given once" \
+        test "$(grep -o -F -e '1e-20' -e 'CAROM_LIMIT_MIN_MASS' "$tmp/err" | wc -l)" -eq 2
+done
 
 run run "$tmp/missing.scene"
 expect_rc 2 "missing scene file"
@@ -432,6 +486,18 @@ expect_rc 2 "profile: unknown weights preset"
 run profile
 expect_rc 2 "profile without a scene"
 
+# No bodies, or no steps: no work, so every share is 0.0 %, the total's too.
+printf 'carom-scene 1\nworld steps=10\n' > "$tmp/nobodies.scene"
+for args in "$tmp/nobodies.scene" "$tmp/ball.scene --steps 0"; do
+    # shellcheck disable=SC2086 # split "SCENE --steps 0" on purpose
+    run profile $args
+    expect_rc 0 "profile $(basename "$args")"
+    check "profile $(basename "$args"): the total's share is 0.0%" \
+        grep -q '^total .* 0\.0%$' "$tmp/out"
+    check "profile $(basename "$args"): no 100% and no nan" \
+        test "$(grep -c -i -e '100\.0%' -e nan "$tmp/out")" -eq 0
+done
+
 # ---- --version -----------------------------------------------------------------
 
 hver=$(awk '$1 == "#define" && $2 ~ /^CAROM_VERSION_(MAJOR|MINOR|PATCH)$/ { v = v (v == "" ? "" : ".") $3 }
@@ -493,8 +559,8 @@ cp "$tmp/out" "$tmp/p1.json"
 run profile "$tmp/ball.scene" --steps=5 --weights=cortex-m0 --json
 expect_rc 0 "profile --weights=NAME"
 check "profile --weights=NAME: same as --weights NAME" cmp -s "$tmp/out" "$tmp/p1.json"
-run render "$tmp/ball.scene" --steps 20 --every 4 --size 200 -o "$tmp/r1.svg"
-run render "$tmp/ball.scene" --steps=20 --every=4 --size=200 --output="$tmp/r2.svg"
+run render "$tmp/ball.scene" --steps 20 --every 4 --size 300 -o "$tmp/r1.svg"
+run render "$tmp/ball.scene" --steps=20 --every=4 --size=300 --output="$tmp/r2.svg"
 expect_rc 0 "render with --opt=value options"
 check "render --opt=value: same SVG" cmp -s "$tmp/r1.svg" "$tmp/r2.svg"
 run render "$tmp/ball.scene" --steps=20 --fps=10 -o"$tmp/r3.svg"
@@ -511,6 +577,26 @@ stderr_has "profile" "run --json: stderr names the command that has it"
 run run "$tmp/ball.scene" --frobnicate=1
 expect_rc 2 "unknown --opt=value"
 stderr_has "--frobnicate" "unknown --opt=value: stderr names the option"
+
+# An option with a value given twice is an error naming it, however
+# written; a flag may repeat.
+for args in "--steps 3 --steps 5" "--steps=3 --steps 3" "--dt 0.01 --dt=0.02" \
+            "--method events --method discrete" "--trace $tmp/t3.csv --trace $tmp/t4.csv"; do
+    # shellcheck disable=SC2086 # split the options on purpose
+    run run "$tmp/ball.scene" $args
+    opt=${args%% *}
+    opt=${opt%%=*}
+    expect_rc 2 "run $args"
+    stderr_has "carom: $opt given twice" "run $args: stderr says $opt was given twice"
+done
+check "--trace given twice: no file written" test ! -e "$tmp/t3.csv" -a ! -e "$tmp/t4.csv"
+run render "$tmp/ball.scene" -o "$tmp/r6.svg" --output "$tmp/r7.svg"
+expect_rc 2 "render -o FILE --output FILE"
+stderr_has "carom: --output given twice" "render -o and --output: stderr names --output"
+run lean "$tmp/ball.scene" --margin 10 --margin 20
+expect_rc 2 "lean --margin twice"
+run run "$tmp/ball.scene" --steps 3 --no-progress --no-progress
+expect_rc 0 "a flag given twice (--no-progress)"
 
 run render "$tmp/ball.scene" --steps=20 --fps=10 -o="$tmp/r5.svg"
 check "render -o=FILE: same SVG as -o FILE" cmp -s "$tmp/r5.svg" "$tmp/r4.svg"
@@ -569,6 +655,22 @@ check "profile: partial table" grep -q "^# partial: stopped at step 3 of 5" "$tm
 check "profile: the table of the steps taken" grep -q "^total " "$tmp/out"
 run profile "$tmp/far.scene" --json
 check "profile --json: a \"partial\" key" grep -q '^{"partial": "stopped at step 3 of 5' "$tmp/out"
+# make run (tools/run-default.sh) of a run that stops early shows what it
+# did until then, and the error, and fails
+sh "$root/tools/run-default.sh" "$cli" "$tmp/far.scene" > "$tmp/out" 2> "$tmp/err"
+rc=$?
+expect_rc 1 "run-default.sh (make run) of a run that fails"
+check "run-default.sh: the partial line" grep -q "^partial: stopped at step 3 of 5: " "$tmp/out"
+check "run-default.sh: the state reached" grep -q "^state reached:" "$tmp/out"
+awk '$1 == "1" && $2 == "80000000" { found = 1 } END { exit !found }' "$tmp/out"
+verdict $? "run-default.sh: body 1 at x = 8e7 after step 2"
+check "run-default.sh: the operation counts of the steps taken" grep -q "^total " "$tmp/out"
+stderr_has "step 3 (t = 2 s)" "run-default.sh: stderr has carom's error"
+sh "$root/tools/run-default.sh" "$cli" "$tmp/ball.scene" > "$tmp/out" 2> "$tmp/err"
+rc=$?
+expect_rc 0 "run-default.sh of a run that succeeds"
+check "run-default.sh: the final state" grep -q "^final state:" "$tmp/out"
+check "run-default.sh: nothing on stderr" test ! -s "$tmp/err"
 
 # ---- progress ---------------------------------------------------------------------
 
@@ -647,11 +749,24 @@ if [ "$have_xmllint" = 1 ]; then
 fi
 run render "$tmp/ball.scene" -o "$tmp/ball10.svg" --fps 10
 svg_checks "render --fps 10" "$tmp/ball10.svg" 21
-# --view: that rectangle (5 m tall at --size 100: 20 px/m, 24 px of label)
-run render "$tmp/ball.scene" -o "$tmp/view.svg" --view=-1,-1,1,4 --size 100
+# --view: that rectangle (5 m tall at --size 300: 60 px/m, 24 px of label;
+# 2 m wide: 120 px, widened to the least width, 260 px)
+run render "$tmp/ball.scene" -o "$tmp/view.svg" --view=-1,-1,1,4 --size 300
 expect_rc 0 "render --view"
-check "render --view: 100 px of view under the label" \
-    grep -q '<svg [^>]* height="124"' "$tmp/view.svg"
+check "render --view: 300 px of view under the label" \
+    grep -q '<svg [^>]* height="324"' "$tmp/view.svg"
+check "render --view: the least width, 260 px" \
+    grep -q '<svg [^>]* width="260"' "$tmp/view.svg"
+# --size below the least width is an option error that states it
+run render "$tmp/ball.scene" -o "$tmp/x.svg" --size 259
+expect_rc 2 "render --size 259"
+stderr_has "--size: want an integer in [260, 16384]" "render --size 259: stderr states the least size"
+check "render --size 259: no file written" test ! -e "$tmp/x.svg"
+run render "$tmp/ball.scene" -o "$tmp/x.svg" --size 260 --steps 10
+expect_rc 0 "render --size 260"
+rm -f "$tmp/x.svg"
+run --help
+check "--help: --size says 260 is the least" grep -q -e "--size PX .*260 to 16384" "$tmp/out"
 for v in "1,1,0,2" "0,0,1" "0,0,1,1,2" "a,0,1,1"; do
     run render "$tmp/ball.scene" -o "$tmp/x.svg" --view "$v"
     expect_rc 2 "render --view $v"

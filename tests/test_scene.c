@@ -532,7 +532,22 @@ START_TEST(test_scene_rejects_unsupported_version)
     expect_error("carom-scene 2\n", 1, "unsupported scene version '2'");
     expect_error("\ncarom-scene 1.0\n", 2, "unsupported scene version");
     expect_error("carom-scene\n", 1, "unsupported scene version");
-    expect_error("carom-scene 1 extra\n", 1, "unsupported scene version");
+    expect_error("carom-scene 2 extra\n", 1, "unsupported scene version '2' (");
+}
+END_TEST
+
+START_TEST(test_scene_header_with_trailing_text_names_it_not_the_version)
+{
+    char err[512];
+    scene s;
+    expect_error("carom-scene 1 extra\n", 1,
+                 "the header line has trailing text after the version: 'extra'");
+    expect_error("\ncarom-scene 1\t extra words # comment\n", 2,
+                 "trailing text after the version: 'extra words'");
+    ck_assert_int_eq(scene_parse(NAME, "carom-scene 1 extra\n", &s, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "unsupported") == NULL, "message '%s' calls 1 unsupported", err);
+    parse_ok("carom-scene 1   # the version, then a comment\n", &s);
+    scene_free(&s);
 }
 END_TEST
 
@@ -769,6 +784,44 @@ START_TEST(test_scene_rejects_out_of_range_density_and_mass)
     expect_body_error("circle density=-2", "density: must be > 0");
     expect_body_error("circle mass=0", "mass: must be > 0, got 0");
     expect_body_error("circle mass=-1", "mass: must be > 0");
+}
+END_TEST
+
+/* Count the occurrences of `needle` in `hay`. */
+static int count_of(const char *hay, const char *needle)
+{
+    int n = 0;
+    for (hay = strstr(hay, needle); hay; hay = strstr(hay + 1, needle))
+        ++n;
+    return n;
+}
+
+START_TEST(test_scene_mass_out_of_range_names_key_value_and_range_once)
+{
+    /* mass= or density= in range of the parser, but the mass or the moment
+     * of inertia they give outside [CAROM_LIMIT_MIN_MASS, _MAX_MASS] */
+    static const struct {
+        const char *body, *key_value;
+    } cases[] = {
+        {"circle density=1e30", "body 0: density=1e30: "},
+        {"circle mass=1e-30", "body 0: mass=1e-30: "},
+        {"circle mass=1e30", "body 0: mass=1e30: "},
+        {"circle radius=1e-6 mass=1e-12", "body 0: mass=1e-12: "}, /* inertia 5e-25 */
+        {"circle radius=1e8", "body 0: density=1 (the default): "}, /* inertia 1.6e32 */
+    };
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        char text[256], err[512];
+        scene s;
+        snprintf(text, sizeof text, HDR "body %s\n", cases[i].body);
+        expect_body_error(cases[i].body, cases[i].key_value);
+        ck_assert_int_eq(scene_parse(NAME, text, &s, err, sizeof err), -1);
+        ck_assert_msg(count_of(err, "[1e-20, 1e+20]") == 1 &&
+                          count_of(err, "CAROM_LIMIT_MIN_MASS") == 1,
+                      "'%s': the range not given exactly once: %s", cases[i].body, err);
+        ck_assert_msg(strstr(err, "mass and moment of inertia must be in [1e-20, 1e+20]"),
+                      "'%s': %s", cases[i].body, err);
+    }
 }
 END_TEST
 
@@ -1152,6 +1205,7 @@ Suite *suite_scene(void)
     tcase_add_test(tc, test_scene_rejects_missing_header);
     tcase_add_test(tc, test_scene_rejects_empty_text);
     tcase_add_test(tc, test_scene_rejects_unsupported_version);
+    tcase_add_test(tc, test_scene_header_with_trailing_text_names_it_not_the_version);
     tcase_add_test(tc, test_scene_rejects_second_header);
     tcase_add_test(tc, test_scene_rejects_unknown_line_type);
     tcase_add_test(tc, test_scene_rejects_second_world_line);
@@ -1174,6 +1228,7 @@ Suite *suite_scene(void)
     tcase_add_test(tc, test_scene_rejects_malformed_vertex_list);
     tcase_add_test(tc, test_scene_rejects_out_of_range_radius);
     tcase_add_test(tc, test_scene_rejects_out_of_range_density_and_mass);
+    tcase_add_test(tc, test_scene_mass_out_of_range_names_key_value_and_range_once);
     tcase_add_test(tc, test_scene_rejects_out_of_range_restitution_and_friction);
     tcase_add_test(tc, test_scene_rejects_out_of_range_half_extents);
     tcase_add_test(tc, test_scene_rejects_out_of_range_angle);

@@ -38,10 +38,15 @@
 #define TRACE_ROW_BYTES 72.0
 /* Default of --max-output, MB (10^6 bytes). */
 #define DEFAULT_MAX_OUTPUT_MB 300.0
-/* render: default and largest --fps, default --size, most impact markers. */
+/* render: default and largest --fps, default, least and largest --size,
+ * most impact markers. MIN_SIZE is render.c's MIN_WIDTH_PX, the narrowest
+ * picture it draws (room for the time label): a smaller --size could not
+ * be the picture's longer side. */
 #define DEFAULT_FPS 30.0
 #define MAX_FPS 60.0
 #define DEFAULT_SIZE 640L
+#define MIN_SIZE 260L
+#define MAX_SIZE 16384L
 #define MAX_MARKERS 10000L
 /* Progress is refreshed at most this often (seconds). */
 #define PROGRESS_PERIOD 0.2
@@ -75,10 +80,12 @@ static const cli_option options[] = {
      "(overrides method=; see docs/events.md)"},
     {OPT_TRACE, "trace", 0, "FILE", CMD_SIM,
      "write every body's state at step 0 and after every\n"
-     "step: step,t,body,x,y,angle,vx,vy,omega"},
+     "step: step,t,body,x,y,angle,vx,vy,omega (a file:\n"
+     "'-' is refused, standard output holds the result)"},
     {OPT_EVENTS, "events", 0, "FILE", CMD_SIM,
      "write every impact, in time order:\n"
-     "t,body_a,body_b,nx,ny,impulse,approach_speed"},
+     "t,body_a,body_b,nx,ny,impulse,approach_speed\n"
+     "(a file, as for --trace)"},
     {OPT_MAX_OUTPUT, "max-output", 0, "MB", CMD_SIM,
      "refuse a --trace or an SVG estimated larger than MB\n"
      "megabytes (default 300) unless --force"},
@@ -109,7 +116,9 @@ static const cli_option options[] = {
     {OPT_IMPACTS, "impacts", 0, NULL, CMD_RENDER,
      "mark each impact where it happens (for 0.25 s)"},
     {OPT_SIZE, "size", 0, "PX", CMD_RENDER,
-     "pixels of the view's longer side (default 640)"},
+     "pixels of the view's longer side, 260 to 16384\n"
+     "(default 640; the picture is at least 260 wide, for\n"
+     "the time label)"},
     {OPT_VIEW, "view", 0, "X0,Y0,X1,Y1", CMD_RENDER,
      "show this rectangle of the world (m) instead of\n"
      "fitting every body over the whole run"},
@@ -215,7 +224,7 @@ static void print_usage(FILE *f)
           "Scene files may end lines with LF, CR LF or CR, and may start with a\n"
           "UTF-8 byte-order mark.\n"
           "\n"
-          "Options are written --opt VALUE or --opt=VALUE.\n"
+          "Options are written --opt VALUE or --opt=VALUE, each at most once.\n"
           "\n"
           "options of every command:\n", f);
     print_option_help(f, CMD_ALL);
@@ -260,8 +269,19 @@ static int apply_option(sim_opts *o, const cli_parser *p)
         o->method = v;
         return 0;
     }
-    case OPT_TRACE: o->trace_path = v; return 0;
-    case OPT_EVENTS: o->events_path = v; return 0;
+    case OPT_TRACE:
+    case OPT_EVENTS:
+        /* '-' is not standard output here: that holds the final state, the
+         * profile or render's -o -, and a CSV mixed into it is unreadable */
+        if (strcmp(v, "-") == 0)
+            return cli_usage_error("carom", "--%s: '-' (standard output) is not possible: "
+                                   "standard output holds the command's result; give a "
+                                   "file name (./- for a file named -)", p->opt->name);
+        if (p->opt->id == OPT_TRACE)
+            o->trace_path = v;
+        else
+            o->events_path = v;
+        return 0;
     case OPT_MAX_OUTPUT:
         return cli_double(p, 0.0, CLI_CLOSED, 1.0e12, "a number of megabytes >= 0",
                           &o->max_output_mb);
@@ -278,8 +298,12 @@ static int apply_option(sim_opts *o, const cli_parser *p)
     case OPT_EVERY:
         return cli_long(p, 1, 1000000000L, NULL, &o->every);
     case OPT_IMPACTS: o->impacts = 1; return 0;
-    case OPT_SIZE:
-        return cli_long(p, 16, 16384, NULL, &o->size);
+    case OPT_SIZE: {
+        char want[128];
+        snprintf(want, sizeof want, "an integer in [%ld, %ld] (pixels; a picture is at "
+                 "least %ld wide, for the time label)", MIN_SIZE, MAX_SIZE, MIN_SIZE);
+        return cli_long(p, MIN_SIZE, MAX_SIZE, want, &o->size);
+    }
     case OPT_MARGIN:
         return cli_long(p, 0, 1000, NULL, &o->margin);
     case OPT_SLACK:
@@ -445,14 +469,21 @@ static int read_scene(const char *path, scene *s, char *err, size_t errlen)
 
 /* ---- output -------------------------------------------------------------- */
 
+/* A value for the CSV outputs, -0 written as 0: a normal (-1, -0) or a
+ * velocity -0 is the library's sign of zero, not something to read. */
+static double csv_num(float x)
+{
+    return x == 0.0f ? 0.0 : (double)x;
+}
+
 static void write_state(FILE *f, const carom_world *w, int i, const char *prefix)
 {
     carom_body_state st;
     carom_body_get_state(w, i, &st);
     fprintf(f, "%s%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", prefix, i,
-            (double)st.position.x, (double)st.position.y,
-            (double)scene_rot_angle(st.rotation), (double)st.velocity.x,
-            (double)st.velocity.y, (double)st.angular_velocity);
+            csv_num(st.position.x), csv_num(st.position.y),
+            csv_num(scene_rot_angle(st.rotation)), csv_num(st.velocity.x),
+            csv_num(st.velocity.y), csv_num(st.angular_velocity));
 }
 
 static void write_trace(FILE *f, const carom_world *w)
@@ -682,7 +713,7 @@ static void print_calibrated_table(const calibration *cal, const char *path,
         printf("%-19s %14.0f %5.1f%%\n",
                row < CAROM_PHASE_COUNT ? cal_row_name(row) : "step (no phase)", rows[row],
                total > 0.0 ? 100.0 * rows[row] / total : 0.0);
-    printf("%-19s %14.0f %5.1f%%\n", "total", total, 100.0);
+    printf("%-19s %14.0f %5.1f%%\n", "total", total, total > 0.0 ? 100.0 : 0.0);
     printf("%s per step %14.1f\n", cal->unit, p->steps ? total / (double)p->steps : 0.0);
 }
 
@@ -729,7 +760,8 @@ static void print_profile_table(const carom_profile *p, const carom_op_weights *
     printf("%-19s", "total");
     for (k = 0; k < CAROM_OP_COUNT; ++k)
         printf(" %12lu", (unsigned long)kinds[k]);
-    printf(" %14.1f %5.1f%%\n\n", total, 100.0);
+    /* no work (no bodies, no steps): no shares, not 100 % of nothing */
+    printf(" %14.1f %5.1f%%\n\n", total, total > 0 ? 100.0 : 0.0);
     impulse = phase_cost(p, wt, CAROM_PHASE_IMPULSES);
     printf("cost per step      %14.1f\n", p->steps ? total / (double)p->steps : 0.0);
     printf("cost per body-step %14.1f\n",
@@ -802,7 +834,8 @@ static void print_profile_json(const carom_profile *p, const carom_op_weights *w
     printf("}\n");
 }
 
-/* '-' is stdout only where allowed (render -o); elsewhere a file named -. */
+/* '-' is stdout only where allowed (render -o; --trace and --events refuse
+ * it when the options are read). */
 static FILE *open_out(const char *path, int dash_is_stdout)
 {
     FILE *f = dash_is_stdout && strcmp(path, "-") == 0 ? stdout : fopen(path, "w");
@@ -1187,9 +1220,9 @@ static int cmd_sim(unsigned cmd, int argc, char **argv)
             const carom_event *ev = carom_world_events(w, &n);
             for (e = 0; e < n; ++e)
                 fprintf(events, "%.9g,%d,%d,%.9g,%.9g,%.9g,%.9g\n",
-                        (double)ev[e].t, ev[e].body_a, ev[e].body_b,
-                        (double)ev[e].normal.x, (double)ev[e].normal.y,
-                        (double)ev[e].impulse, (double)ev[e].approach_speed);
+                        csv_num(ev[e].t), ev[e].body_a, ev[e].body_b,
+                        csv_num(ev[e].normal.x), csv_num(ev[e].normal.y),
+                        csv_num(ev[e].impulse), csv_num(ev[e].approach_speed));
         }
         if (trace)
             write_trace(trace, w);

@@ -93,6 +93,15 @@ cli_item cli_next(cli_parser *p)
         }
         value = p->argv[p->next++];
     }
+    if (o->arg) {
+        /* "--steps 3 --steps 5" is a slip to name, not one to settle by
+         * taking the last value */
+        size_t k = (size_t)(o - p->options);
+        if (k < CLI_MAX_OPTIONS && p->given[k]++) {
+            cli_usage_error(p->prog, "--%s given twice", o->name);
+            return CLI_ERROR;
+        }
+    }
     p->opt = o;
     p->value = value;
     return CLI_OPTION;

@@ -5,7 +5,9 @@
  *
  * An option is written --name VALUE, --name=VALUE, -x VALUE, -xVALUE or
  * -x=VALUE (a flag: --name or -x alone); "--" ends the options, and "-"
- * or any argument not starting with '-' is an operand. Every message is
+ * or any argument not starting with '-' is an operand. An option that
+ * takes a value may be given once: a second time is an error ("--NAME
+ * given twice"), not a silent override (a flag may repeat). Every message is
  * "PROG: what is wrong" then "(try 'PROG --help')" on stderr, and the
  * functions that print one return CLI_EXIT_USAGE for the caller to exit
  * with.
@@ -27,6 +29,10 @@ extern "C" {
 
 /* The exit status of bad usage. */
 #define CLI_EXIT_USAGE 2
+
+/* The most options a table may have for "given twice" to be caught (the
+ * parser notes each one given in a fixed array). */
+#define CLI_MAX_OPTIONS 64
 
 #if defined(__GNUC__)
 #define CLI_PRINTF(f, a) __attribute__((format(printf, f, a)))
@@ -58,6 +64,8 @@ typedef struct cli_parser {
     int only_operands;          /* after "--" */
     const cli_option *opt;      /* what cli_next found */
     const char *value;
+    unsigned char given[CLI_MAX_OPTIONS]; /* options with a value seen, by
+                                           * index in the table */
 } cli_parser;
 
 /* What cli_next found. */
@@ -74,7 +82,7 @@ void cli_start(cli_parser *p, const char *prog, const cli_option *options, int c
 /* The next argument: CLI_OPTION (p->opt, and p->value: its value, NULL
  * for a flag), CLI_OPERAND (p->value), CLI_END, or CLI_ERROR after a
  * message (unknown option, option of another command, value given to a
- * flag, value missing). */
+ * flag, value missing, an option with a value given twice). */
 cli_item cli_next(cli_parser *p);
 
 /* The value of option p->opt as an integer in [lo, hi] into *out: 0, or

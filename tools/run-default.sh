@@ -1,6 +1,9 @@
 #!/bin/sh
 # run-default.sh CAROM SCENE -- `make run`: step a scene and say what
-# happened (impacts, final state).
+# happened (impacts, final state). A run that stops early (carom exits 1,
+# the state reached marked partial) is still shown, up to where it
+# stopped, and the script then exits 1; a bad scene (exit 2) shows nothing
+# but carom's message.
 set -eu
 carom="$1"
 scene="$2"
@@ -10,8 +13,15 @@ trap 'rm -rf "$tmp"' EXIT
 table() {
     awk -F, '{ for (i = 1; i <= NF; ++i) printf "  %-14s", $i; printf "\n" }'
 }
-"$carom" run "$scene" --events "$tmp/events.csv" > "$tmp/final.csv"
-bodies=$(($(wc -l < "$tmp/final.csv") - 1))
+rc=0
+"$carom" run "$scene" --events "$tmp/events.csv" > "$tmp/final.csv" || rc=$?
+if [ "$rc" -ne 0 ] && [ "$rc" -ne 1 ]; then
+    exit "$rc"
+fi
+# a partial run's first line: "# partial: stopped at step N of M: ..."
+grep '^#' "$tmp/final.csv" > "$tmp/partial" || true
+grep -v '^#' "$tmp/final.csv" > "$tmp/state.csv" || true
+bodies=$(($(wc -l < "$tmp/state.csv") - 1))
 impacts=$(($(wc -l < "$tmp/events.csv") - 1))
 echo "scene:   $scene"
 grep -E '^world' "$scene" | sed 's/^/         /'
@@ -23,8 +33,21 @@ if [ "$impacts" -gt 0 ]; then
     head -n 9 "$tmp/events.csv" | table
 fi
 echo
-echo "final state:"
-table < "$tmp/final.csv"
+if [ -s "$tmp/partial" ]; then
+    sed "s/^# //" "$tmp/partial"
+    echo
+    echo "state reached:"
+else
+    echo "final state:"
+fi
+table < "$tmp/state.csv"
 echo
 echo "floating-point work (carom profile, design note's cost table; docs/cost-model.md):"
-"$carom" profile "$scene" | sed -n '/^phase/,$p'
+if [ "$rc" -eq 0 ]; then
+    "$carom" profile "$scene" | sed -n '/^phase/,$p'
+else
+    # the steps taken; the error is the one carom run gave above
+    "$carom" profile "$scene" 2> /dev/null | sed -n '/^phase/,$p'
+    echo "run-default.sh: $scene: the run stopped early (carom's message above); shown: what it did until then" >&2
+fi
+exit "$rc"

@@ -351,6 +351,7 @@ static int parse_body(parser *p, char *rest, scene *s)
     carom_body_def *d = &sb.def;
     carom_vec2 half = {0.0f, 0.0f};
     carom_status st;
+    const char *mass_key = "density", *mass_value = "1 (the default)"; /* for messages */
 
     memset(&sb, 0, sizeof sb);
     *d = carom_default_body_def();
@@ -431,11 +432,14 @@ static int parse_body(parser *p, char *rest, scene *s)
                 return -1;
             if (!(d->density > 0.0f))
                 return fail(p, "density: must be > 0, got %s", val);
+            mass_value = val;
         } else if (strcmp(key, "mass") == 0) {
             if (seen_before(p, &seen, K_MASS, key) || parse_float(p, key, val, &d->mass))
                 return -1;
             if (!(d->mass > 0.0f))
                 return fail(p, "mass: must be > 0, got %s", val);
+            mass_key = "mass";
+            mass_value = val;
         } else if (strcmp(key, "restitution") == 0) {
             if (seen_before(p, &seen, K_REST, key) || parse_float(p, key, val, &d->restitution))
                 return -1;
@@ -492,9 +496,13 @@ static int parse_body(parser *p, char *rest, scene *s)
         return fail(p, "body %d: %s: %s", s->body_count, carom_status_string(st),
                     range_hint(d, hint, sizeof hint));
     }
+    /* (mass <= 0 and density <= 0 were refused above: here the mass or
+     * the inertia that follows from mass= or density= and the size is out
+     * of range; the status string would give the range a second time) */
     if (st == CAROM_ERR_BAD_MASS)
-        return fail(p, "body %d: %s: mass and inertia must be in [%g, %g] (kg, kg m^2)",
-                    s->body_count, carom_status_string(st), (double)CAROM_LIMIT_MIN_MASS,
+        return fail(p, "body %d: %s=%s: a dynamic body's mass and moment of inertia must be "
+                       "in [%g, %g] (kg, kg m^2; CAROM_LIMIT_MIN_MASS, _MAX_MASS)",
+                    s->body_count, mass_key, mass_value, (double)CAROM_LIMIT_MIN_MASS,
                     (double)CAROM_LIMIT_MAX_MASS);
     if (st != CAROM_OK)
         return fail(p, "body %d: %s", s->body_count, carom_status_string(st));
@@ -564,14 +572,26 @@ int scene_parse(const char *name, const char *text, scene *s, char *err,
             rest = start + strlen(start);
 
         if (!have_header) {
+            char *extra;
             if (strcmp(word, "carom-scene") != 0) {
                 fail(&p, "expected header 'carom-scene 1', got '%s'", word);
                 goto error;
             }
             while (*rest == ' ')
                 ++rest;
+            extra = strchr(rest, ' ');
+            if (extra) {
+                *extra++ = '\0';
+                while (*extra == ' ')
+                    ++extra;
+            }
             if (strcmp(rest, "1") != 0) {
                 fail(&p, "unsupported scene version '%s' (this reader knows 1)", rest);
+                goto error;
+            }
+            if (extra) {
+                fail(&p, "the header line has trailing text after the version: '%s' "
+                         "(want 'carom-scene 1' alone)", extra);
                 goto error;
             }
             have_header = 1;
