@@ -46,8 +46,11 @@ typedef struct cr_solver_body {
     unsigned char active; /* has a contact solved this substep */
     unsigned char held;   /* events: an impact's hold changed its drift
                              this substep */
-    unsigned char pushed; /* the warm start's unloading reduced a contact
-                             of what rests on it (cr_solver_unload) */
+    unsigned char walk;   /* a flag of one walk over the support order:
+                             the warm start's unloading reduced a contact
+                             of what rests on it (cr_solver_unload); shock
+                             propagation holds it where it is, anchored
+                             (cr_solver_shock) */
     unsigned char keep;   /* events: its drift keeps what is left of its
                              holds' impulses (cr_hold_keep) */
 } cr_solver_body;
