@@ -704,16 +704,23 @@ END_TEST
  * its push holds up the heavy box with no reaction on the light one,
  * whose grip on the slope then lacks the load (100:1 went 20 % too far).
  * Mass ratios 1, 10 and 100: within 2 % of the distance, and the boxes
- * within 1 cm of each other along the slope.
+ * within 1 cm of each other along the slope; 1000: within 15 % (the
+ * sweeps pass the heavy box's load on to the slope's grip slowly; the
+ * shock pass's impulses against the slope are kept for that: without
+ * them, 45 % too far; before the shock pass took slopes, 15 % with the
+ * heavy box tipped 0.2 rad; Box2D v3 4 %, tipped 0.2 rad), the heavy box
+ * within 10 cm of the light one and turned less than 0.05 rad off the
+ * slope.
  */
 START_TEST(test_loaded_box_slides_down_a_slope_at_the_coulomb_rate)
 {
-    static const float ratios[] = {1.0f, 10.0f, 100.0f};
+    static const float ratios[] = {1.0f, 10.0f, 100.0f, 1000.0f};
     static const carom_method methods[] = {CAROM_METHOD_DISCRETE, CAROM_METHOD_EVENTS};
     const double th = 25.0 * 3.14159265358979 / 180.0;
     const double want = 0.5 * 10.0 * (sin(th) - 0.3 * cos(th)) * 2.0 * 2.0;
-    const float ratio = ratios[_i % 3];
-    const carom_method method = methods[_i / 3];
+    const float ratio = ratios[_i % 4];
+    const double tol = ratio > 100.0f ? 0.15 : 0.02, apart = ratio > 100.0f ? 0.1 : 0.01;
+    const carom_method method = methods[_i / 4];
     carom_world_def wd = carom_default_world_def();
     carom_body_state sl, sh;
     double dl, dh;
@@ -729,9 +736,12 @@ START_TEST(test_loaded_box_slides_down_a_slope_at_the_coulomb_rate)
     sh = tw_state(&t, heavy);
     dl = -((sl.position.x + 0.5 * sin(th)) * cos(th) + (sl.position.y - 0.5 * cos(th)) * sin(th));
     dh = -((sh.position.x + 1.25 * sin(th)) * cos(th) + (sh.position.y - 1.25 * cos(th)) * sin(th));
-    ck_assert_msg(fabs(dh - want) < 0.02 * want && fabs(dh - dl) < 0.01,
-                  "%s, %g:1: the light box slid %g m, the heavy one %g m (want %g)",
-                  carom_method_name(method), (double)ratio, dl, dh, want);
+    ck_assert_msg(fabs(dh - want) < tol * want && fabs(dh - dl) < apart &&
+                      fabs(carom_rot_angle(sh.rotation) - th) < 0.05,
+                  "%s, %g:1: the light box slid %g m, the heavy one %g m (want %g), "
+                  "turned to %g rad (the slope %g)",
+                  carom_method_name(method), (double)ratio, dl, dh, want,
+                  (double)carom_rot_angle(sh.rotation), th);
     tw_free(&t);
 }
 END_TEST
@@ -822,7 +832,7 @@ Suite *suite_solver(void)
     tcase_add_loop_test(tr, test_heavy_box_landing_on_a_light_one_never_throws_it_up, 0, 16);
     tcase_add_loop_test(tr, test_heavy_on_light_stays_on_an_off_centre_floor, 0, 3);
     tcase_add_loop_test(tr, test_heavy_box_on_a_light_one_holds_on_a_slope, 0, 8);
-    tcase_add_loop_test(tr, test_loaded_box_slides_down_a_slope_at_the_coulomb_rate, 0, 6);
+    tcase_add_loop_test(tr, test_loaded_box_slides_down_a_slope_at_the_coulomb_rate, 0, 8);
     suite_add_tcase(s, tn);
     suite_add_tcase(s, tc);
     suite_add_tcase(s, tr);
