@@ -1295,18 +1295,19 @@ static int cr_slanted(const carom_world *w, const cr_pair *p, int lower, cr_v2 u
  * after its normal impulses x[0..n-1]: the slip of body u along contact c
  * against the body below (at the mean of its points) is stopped by u
  * alone, within the Coulomb cone of the contact's normal impulse,
- * accumulated and added. On a slope the friction carries the weight's
- * share along the face, and the sweeps alone hold a heavy box on a light
- * one about m_light / m_heavy as well as it needs: 1000 kg on 1 kg on a
- * 20 degree slope (friction 0.5), held up by the normal push alone, slid
- * off it in 10 s; with this, 5 cm. On
- * a level support nothing loads the friction, and the pass is left out:
- * there it only turned rounding into sway (a 25-box column of slender
- * boxes, each stopped against the one below through its own rotation, was
- * 2 cm off after 10 s, where without it it stays exact). */
-/* Returns 1 if the slip was stopped within the cone (u sticks). `keep`:
- * the body below is static or kinematic, and the impulse is added to the
- * contact's friction, as its normal ones are (cr_solver_shock). */
+ * accumulated and added. Returns 1 if the slip was stopped within the
+ * cone (u sticks). `keep`: the body below is static or kinematic, and the
+ * impulse is added to the contact's friction, as its normal ones are
+ * (cr_solver_shock).
+ *
+ * On a slope the friction carries the weight's share along the face, and
+ * the sweeps alone hold a heavy box on a light one about m_light / m_heavy
+ * as well as it needs: 1000 kg on 1 kg on a 20 degree slope (friction
+ * 0.5), held up by the normal push alone, slid off it in 10 s; with this,
+ * 5 cm. On a level support nothing loads the friction, and the pass is
+ * left out: there it only turned rounding into sway (a 25-box column of
+ * slender boxes, each stopped against the one below through its own
+ * rotation, was 2 cm off after 10 s, where without it it stays exact). */
 static int cr_shock_friction(carom_world *w, cr_contact *c, int u, const float *x, int n,
                              int keep)
 {
@@ -1379,9 +1380,10 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
             const cr_pair *p = &w->pairs[k];
             int next = p->a == u ? p->next_a : p->next_b;
             int lower = p->a == u ? p->b : p->a;
-            int anchored = w->bodies[lower].type != CAROM_BODY_DYNAMIC || w->sbody[lower].walk;
-            int slanted = cr_shock_of(w, p, u) && cr_slanted(w, p, lower, up);
-            if (cr_shock_of(w, p, u) && (anchored || !slanted)) {
+            int fixed = w->bodies[lower].type != CAROM_BODY_DYNAMIC; /* static, kinematic */
+            int anchored = fixed || w->sbody[lower].walk;
+            int shock = cr_shock_of(w, p, u), slanted = shock && cr_slanted(w, p, lower, up);
+            if (shock && (anchored || !slanted)) {
                 cr_contact *c = &w->contacts[p->contact];
                 const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
                 float err[CR_MANIFOLD_POINTS], x[CR_MANIFOLD_POINTS];
@@ -1410,20 +1412,18 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
                     if (cr_one_sided(w, c, u, e, y))
                         cr_push_up(w, c, u, 1, y[1], 0);
                 }
-                /* held where it is by what is under it: level, on an
-                 * anchored body; slanted, by friction within its cone */
                 /* on a static or kinematic body a one-sided impulse is
                  * the contact's own (what it pushes against cannot move):
                  * kept, so that the sweeps' friction of the next substep
                  * has the load (a light box under a heavy one sliding down
                  * a slope: 1000:1 went 45 % too far, now 7 to 11 %) */
-                if (slanted && w->bodies[lower].type != CAROM_BODY_DYNAMIC)
+                if (slanted && fixed)
                     for (j = 0; j < n; ++j)
                         c->pts[j].pn = cr_add(c->pts[j].pn, x[j]);
+                /* held where it is by what is under it: level, on an
+                 * anchored body; slanted, by friction within its cone */
 #if CAROM_ENABLE_FRICTION
-                if (slanted ? cr_shock_friction(w, c, u, x, n,
-                                                w->bodies[lower].type != CAROM_BODY_DYNAMIC)
-                            : anchored)
+                if (slanted ? cr_shock_friction(w, c, u, x, n, fixed) : anchored)
                     w->sbody[u].walk = 1;
 #else
                 if (!slanted && anchored)
