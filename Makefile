@@ -72,7 +72,7 @@ include mk/docs.mk
 include mk/quality.mk
 HAVE_BOX2D := $(shell pkg-config --exists box2d 2>/dev/null && echo yes)
 
-.PHONY: check-cross all lib cli check unit unit-nogrid cli-test readme-test check-symbols check-switches run clean help deps
+.PHONY: check-cross all lib cli check unit unit-nogrid check-soft-deep cli-test readme-test check-symbols check-switches run clean help deps
 .PHONY: help-check examples-check header-example-check
 
 EXAMPLES := $(patsubst examples/%.c,$(BUILD)/examples/%,$(wildcard examples/*.c))
@@ -147,6 +147,14 @@ unit-nogrid: deps
 	@$(MAKE) --no-print-directory BUILD=$(BUILD)/nogrid CAROM_FLAGS='$(CAROM_FLAGS) -DCAROM_ENABLE_GRID=0' $(BUILD)/nogrid/carom_tests
 	CK_DEFAULT_TIMEOUT=120 $(BUILD)/nogrid/carom_tests
 
+# The whole unit suite against a library built with the soft push of deep
+# overlaps between unlike bodies (CAROM_SOFT_DEEP_CONTACTS=1, off by
+# default), then the mixed-density pile it settles.
+check-soft-deep: deps
+	@$(MAKE) --no-print-directory BUILD=$(BUILD)/soft CAROM_FLAGS='$(CAROM_FLAGS) -DCAROM_SOFT_DEEP_CONTACTS=1' $(BUILD)/soft/carom_tests $(BUILD)/soft/carom $(BUILD)/soft/stress_check
+	CK_DEFAULT_TIMEOUT=120 $(BUILD)/soft/carom_tests
+	sh tools/check-soft-deep.sh $(BUILD)/soft
+
 cli-test: $(CLI)
 	sh tests/cli_test.sh $(CLI)
 
@@ -185,6 +193,7 @@ check: deps
 	@$(MAKE) --no-print-directory check-cross
 	@$(MAKE) --no-print-directory unit
 	@$(MAKE) --no-print-directory unit-nogrid
+	@$(MAKE) --no-print-directory check-soft-deep
 	@$(MAKE) --no-print-directory readme-test
 	@$(MAKE) --no-print-directory header-example-check
 	@$(MAKE) --no-print-directory examples-check
@@ -228,9 +237,10 @@ help:
 	@echo "  make fuzz-build      the libFuzzer harnesses only, in $(BUILD)/fuzz/"
 	@echo ""
 	@echo "test"
-	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, unit-nogrid, readme-test, header-example-check, examples-check, validate-check, cli-test, stress-check, accuracy-check, check-embedded, lean-check, fuzz-check (reproducible, ~30 s a harness when clang is here), install-test, check-cxx, coverage-check, sanitize, memcheck, help-check, docs-check"
+	@echo "  make check           the whole suite: deps, all, check-symbols, check-switches, check-cross, unit, unit-nogrid, check-soft-deep, readme-test, header-example-check, examples-check, validate-check, cli-test, stress-check, accuracy-check, check-embedded, lean-check, fuzz-check (reproducible, ~30 s a harness when clang is here), install-test, check-cxx, coverage-check, sanitize, memcheck, help-check, docs-check"
 	@echo "  make unit            the Check unit tests, plain and profiling builds"
 	@echo "  make unit-nogrid     the unit tests against a library built with CAROM_ENABLE_GRID=0 (same results)"
+	@echo "  make check-soft-deep  the unit tests against a library built with CAROM_SOFT_DEEP_CONTACTS=1, and the mixed-density pile it settles"
 	@echo "  make cli-test        $(CLI)'s command-line tests (tests/cli_test.sh)"
 	@echo "  make readme-test     the README's example program compiles and runs"
 	@echo "  make header-example-check  the minimal program in carom.h's opening comment compiles, runs and prints what it says"

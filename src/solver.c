@@ -476,12 +476,86 @@ static float cr_approach_before(const carom_world *w, const cr_contact *c,
     return cr_point_vn(va, wa, vb, wb, c, p);
 }
 
+/*
+ * Deep resting overlaps of unlike bodies (CAROM_SOFT_DEEP_CONTACTS, off by
+ * default): a soft push in the velocity sweeps instead of the position
+ * sweep (Box2D v3's soft contact, for that part of the overlap only).
+ *
+ * A light box jammed deep between heavy ones (a pour of mixed densities)
+ * is the position sweep's weak case: its rigid pseudo-velocities, one
+ * sweep from zero in each substep, swing the light box back and forth and
+ * the pile never settles. Where a resting contact joins two dynamic
+ * bodies of masses more than CR_SOFT_MASS_RATIO apart, what lies deeper
+ * than CR_SOFT_DEEP_SLOPS slops is left to the sweeps before the move: a
+ * damped spring (b2MakeSoft) of h w = CR_SOFT_H_OMEGA, damping ratio
+ * CR_SOFT_DAMPING, pushing at most at the push speed, solved with
+ * friction; the relax sweeps take its push back out of the velocities. Its
+ * impulse scale lets the accumulated impulse go, so a jam settles with its
+ * overlap (a loaded point sinks about W h^2 / (m (h w)^2) past the depth).
+ * h w = pi / 2 is v3's stiffest contact (a quarter of the substep rate).
+ */
+#define CR_SOFT_MASS_RATIO 2.0f
+#define CR_SOFT_DEEP_SLOPS 10.0f
+#define CR_SOFT_H_OMEGA 1.5707963f
+#define CR_SOFT_DAMPING 30.0f
+#define CR_SOFT_A1 (2.0f * CR_SOFT_DAMPING + CR_SOFT_H_OMEGA)
+#define CR_SOFT_A2 (CR_SOFT_H_OMEGA * CR_SOFT_A1)
+/* bias per unit overlap, times 1/h; mass and impulse scales */
+#define CR_SOFT_RATE (CR_SOFT_H_OMEGA / CR_SOFT_A1)
+#define CR_SOFT_MASS_SCALE (CR_SOFT_A2 / (1.0f + CR_SOFT_A2))
+#define CR_SOFT_IMPULSE_SCALE (1.0f / (1.0f + CR_SOFT_A2))
+
+/* Does contact c take the soft push for its deep points? */
+static int cr_soft_pair(const carom_world *w, const cr_contact *c)
+{
+#if CAROM_SOFT_DEEP_CONTACTS
+    float a = w->bodies[c->a].inv_m, b = w->bodies[c->b].inv_m;
+    if (!(c->flags & CR_CONTACT_RESTING) || cr_eq(a, 0.0f) || cr_eq(b, 0.0f))
+        return 0;
+    return cr_gt(a, cr_mul(CR_SOFT_MASS_RATIO, b)) || cr_gt(b, cr_mul(CR_SOFT_MASS_RATIO, a));
+#else
+    (void)w;
+    (void)c;
+    return 0;
+#endif
+}
+
+/* The overlap past which a soft pair's point is pushed softly. */
+static float cr_soft_depth(const carom_world *w)
+{
+    return cr_mul(CR_SOFT_DEEP_SLOPS, w->scale.slop);
+}
+
+/* The normal rows of a contact with soft points, one after the other. */
+static void cr_soft_rows(cr_rows_ctx *x, const cr_contact *c, float *acc, const float *bias,
+                         const float *vn, const int *soft)
+{
+    int k;
+    for (k = 0; k < c->count; ++k) {
+        float v = k == 0 ? vn[0] : cr_rows_vn(x, c, k);
+        float m = c->pts[k].mass_n, p;
+        if (soft[k])
+            p = cr_sub(cr_sub(acc[k], cr_mul(cr_mul(CR_SOFT_MASS_SCALE, m), cr_add(v, bias[k]))),
+                       cr_mul(CR_SOFT_IMPULSE_SCALE, acc[k]));
+        else
+            p = cr_sub(acc[k], cr_mul(m, cr_add(v, bias[k])));
+        p = cr_max(p, 0.0f);
+        cr_rows_apply(x, c->n, k, cr_sub(p, acc[k]));
+        acc[k] = p;
+    }
+}
+
+/* One sweep's rows of contact c; `biased`: a sweep before the move, where
+ * deep points of soft pairs are pushed out softly. */
 static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s,
-                              int first, int cached)
+                              int first, int cached, int biased)
 {
     const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
     float bias[CR_MANIFOLD_POINTS], vn[CR_MANIFOLD_POINTS];
     float acc[CR_MANIFOLD_POINTS];
+    int soft[CR_MANIFOLD_POINTS], any_soft = 0;
+    int soft_pair = biased && cr_soft_pair(w, c);
+    float deep = soft_pair ? cr_soft_depth(w) : 0.0f;
     cr_rows_ctx x;
     int k;
     cr_rows_of_velocity(w, c, &x);
@@ -494,7 +568,13 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
         float sep = cached ? p->pp : cr_current_sep(c, p, sa, sb);
         p->pp = sep;
         bias[k] = 0.0f;
-        if (cr_gt(sep, 0.0f)) {
+        soft[k] = 0;
+        if (soft_pair && cr_lt(sep, cr_neg(deep))) {
+            soft[k] = 1;
+            any_soft = 1;
+            bias[k] = cr_max(cr_mul(cr_mul(CR_SOFT_RATE, s->inv_h), cr_add(sep, deep)),
+                             cr_neg(s->push));
+        } else if (cr_gt(sep, 0.0f)) {
             if (first) {
                 /* close the gap with the substep's mean velocity */
                 float vn0 = cr_point_vn(sa->v0, sa->w0, sb->v0, sb->w0, c, p);
@@ -511,7 +591,10 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
         if (first && cr_eq(p->max_pn, 0.0f))
             c->pts[k].rel_vn = cr_approach_before(w, c, p, s);
     }
-    cr_normal_rows(&x, c, acc, bias, vn);
+    if (any_soft)
+        cr_soft_rows(&x, c, acc, bias, vn, soft);
+    else
+        cr_normal_rows(&x, c, acc, bias, vn);
     for (k = 0; k < c->count; ++k) {
         c->pts[k].pn = acc[k];
         c->pts[k].max_pn = cr_max(c->pts[k].max_pn, acc[k]);
@@ -551,7 +634,7 @@ void cr_solver_solve(carom_world *w, const cr_substep *s, int first,
             cr_contact *c = &w->contacts[w->solve_order[i]];
             /* an impact inside the substep may have made it one */
             if (c->flags & CR_CONTACT_SOLVE)
-                cr_solve_velocity(w, c, s, first && it == 0, it > 0);
+                cr_solve_velocity(w, c, s, first && it == 0, it > 0, first);
         }
     w->sep_cached = iterations > 0;
 }
@@ -589,12 +672,17 @@ static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap);
  * substep, and in a deep pile each such move turns the contacts a little,
  * so last step's impulses no longer balance the weights: the bodies sink,
  * the correction pushes them apart along slanted normals, and the pile
- * creeps without end and never sleeps (docs/physics.md).
+ * creeps without end and never sleeps (docs/physics.md). A deep point of
+ * a soft pair is left to the soft push of the velocity sweeps
+ * (cr_soft_pair): none.
  */
 static float cr_excess_overlap(const carom_world *w, const cr_contact *c, float sep)
 {
-    if (c->flags & CR_CONTACT_RESTING)
+    if (c->flags & CR_CONTACT_RESTING) {
+        if (cr_soft_pair(w, c) && cr_lt(sep, cr_neg(cr_soft_depth(w))))
+            return 0.0f;
         return cr_neg(cr_add(sep, w->scale.slop));
+    }
     return cr_neg(sep);
 }
 

@@ -35,6 +35,10 @@ done
 # size may go either way with the compiler's inlining
 n=$(size_of "-DCAROM_ENABLE_COMPENSATED=0")
 printf '%8s  CAROM_ENABLE_COMPENSATED=0\n' "$n"
+# so does the soft push of deep overlaps between unlike bodies (off by
+# default; make check-soft-deep tests it)
+n=$(size_of "-DCAROM_SOFT_DEEP_CONTACTS=1")
+printf '%8s  CAROM_SOFT_DEEP_CONTACTS=1\n' "$n"
 n=$(size_of "-DCAROM_ENABLE_PROFILE=1")
 printf '%8s  CAROM_ENABLE_PROFILE=1\n' "$n"
 [ "$n" -gt "$base" ] || { echo "check-switches: FAIL: profiling added no code" >&2; fail=1; }
