@@ -444,19 +444,20 @@
 #endif
 
 #ifndef CAROM_SOFT_DEEP_CONTACTS
-#define CAROM_SOFT_DEEP_CONTACTS 0 /**< 1: a resting overlap between two
-                                        dynamic bodies of masses more than
-                                        2 times apart is pushed out, past
-                                        10 slops, by a soft damped spring
-                                        in the velocity sweeps (Box2D v3's
-                                        soft contact) instead of the
+#define CAROM_SOFT_DEEP_CONTACTS 0 /**< 1: in a jam of unlike densities
+                                        (two dynamic bodies of densities
+                                        more than 2 times apart overlapping
+                                        deeper than 10 slops at rest), the
+                                        overlap past 10 slops of a resting
+                                        contact with a body of unlike mass
+                                        is pushed out by a soft damped
+                                        spring in the velocity sweeps (Box2D
+                                        v3's soft contact) instead of the
                                         position correction. It settles
-                                        piles of mixed densities, which
-                                        the rigid correction keeps
-                                        churning, and deepens the overlaps
-                                        of loaded small bodies in piles of
-                                        unequal sizes (docs/physics.md,
-                                        "Deep overlaps of unlike bodies") */
+                                        mixed piles the rigid correction
+                                        keeps churning, with deeper
+                                        overlaps (docs/physics.md, "Deep
+                                        overlaps of unlike bodies") */
 #endif
 
 #ifndef CAROM_FACE_TOL_PER_SLOP

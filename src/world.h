@@ -51,6 +51,10 @@ typedef struct cr_solver_body {
                              of what rests on it (cr_solver_unload); shock
                              propagation holds it where it is, anchored
                              (cr_solver_shock) */
+#if CAROM_SOFT_DEEP_CONTACTS
+    unsigned char mixed;  /* in a deep resting overlap with a body of unlike
+                             density at the step's start (cr_mark_mixed) */
+#endif
     unsigned char keep;   /* events: its drift keeps what is left of its
                              holds' impulses (cr_hold_keep) */
 } cr_solver_body;
