@@ -526,11 +526,14 @@ static float cr_approach_before(const carom_world *w, const cr_contact *c,
 static int cr_soft_pair(const carom_world *w, const cr_contact *c)
 {
 #if CAROM_SOFT_DEEP_CONTACTS
-    float a = w->bodies[c->a].inv_m, b = w->bodies[c->b].inv_m;
-    if (!(c->flags & CR_CONTACT_RESTING) || cr_eq(a, 0.0f) || cr_eq(b, 0.0f))
+    float a, b;
+    /* (the flags first: most contacts are in no jam of unlike densities) */
+    if (!(c->flags & CR_CONTACT_RESTING) || (!w->sbody[c->a].mixed && !w->sbody[c->b].mixed))
         return 0;
-    if (!w->sbody[c->a].mixed && !w->sbody[c->b].mixed)
-        return 0; /* in no jam of unlike densities */
+    a = w->bodies[c->a].inv_m;
+    b = w->bodies[c->b].inv_m;
+    if (cr_eq(a, 0.0f) || cr_eq(b, 0.0f))
+        return 0;
     return cr_gt(a, cr_mul(CR_SOFT_MASS_RATIO, b)) || cr_gt(b, cr_mul(CR_SOFT_MASS_RATIO, a));
 #else
     (void)w;
