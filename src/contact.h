@@ -70,6 +70,10 @@ typedef struct cr_contact_point {
                                      approaching (cr_pair_to_solver): the
                                      solver's to the step's end, not an
                                      impact again at the next substep */
+#define CR_CONTACT_SOFT 512u /* CAROM_SOFT_DEEP_CONTACTS: a contact of a body
+                                in a jam of unlike densities with a body of
+                                unlike mass (cr_mark_mixed); soft while
+                                resting */
 
 typedef struct cr_contact {
     int a, b;          /* body slots, a < b */

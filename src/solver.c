@@ -522,24 +522,13 @@ static float cr_approach_before(const carom_world *w, const cr_contact *c,
 #define CR_SOFT_MASS_SCALE (CR_SOFT_A2 / (1.0f + CR_SOFT_A2))
 #define CR_SOFT_IMPULSE_SCALE (1.0f / (1.0f + CR_SOFT_A2))
 
-/* Does contact c take the soft push for its deep points? */
-static int cr_soft_pair(const carom_world *w, const cr_contact *c)
+/* Does contact c take the soft push for its deep points? Marked at the
+ * step's start (cr_mark_mixed), while it rests (a contact the events
+ * method remakes after an impact rests no more). */
+static int cr_soft_pair(const cr_contact *c)
 {
-#if CAROM_SOFT_DEEP_CONTACTS
-    float a, b;
-    /* (the flags first: most contacts are in no jam of unlike densities) */
-    if (!(c->flags & CR_CONTACT_RESTING) || (!w->sbody[c->a].mixed && !w->sbody[c->b].mixed))
-        return 0;
-    a = w->bodies[c->a].inv_m;
-    b = w->bodies[c->b].inv_m;
-    if (cr_eq(a, 0.0f) || cr_eq(b, 0.0f))
-        return 0;
-    return cr_gt(a, cr_mul(CR_SOFT_MASS_RATIO, b)) || cr_gt(b, cr_mul(CR_SOFT_MASS_RATIO, a));
-#else
-    (void)w;
-    (void)c;
-    return 0;
-#endif
+    const unsigned both = CR_CONTACT_SOFT | CR_CONTACT_RESTING;
+    return CAROM_SOFT_DEEP_CONTACTS && (c->flags & both) == both;
 }
 
 /* The overlap past which a soft pair's point is pushed softly. */
@@ -552,8 +541,9 @@ static float cr_soft_depth(const carom_world *w)
 /* Mark the bodies of the deep resting overlaps (deeper than
  * CR_SOFT_DEEP_SLOPS slops at the step's start) between two dynamic
  * bodies of densities more than CR_SOFT_DENSITY_RATIO apart: the jams of
- * a mixed pile. Their contacts with bodies of unlike mass take the soft
- * push (cr_soft_pair); a pile of one density marks none. */
+ * a mixed pile, and their resting contacts with bodies of unlike mass,
+ * which take the soft push (cr_soft_pair); a pile of one density marks
+ * none. */
 static void cr_mark_mixed(carom_world *w)
 {
     float deep = cr_neg(cr_soft_depth(w));
@@ -577,6 +567,18 @@ static void cr_mark_mixed(carom_world *w)
             w->sbody[c->a].mixed = 1;
             w->sbody[c->b].mixed = 1;
         }
+    }
+    /* their resting contacts with bodies of unlike mass */
+    for (i = 0; i < w->contact_count; ++i) {
+        cr_contact *c = &w->contacts[i];
+        float a, b;
+        if (!(c->flags & CR_CONTACT_RESTING) || (!w->sbody[c->a].mixed && !w->sbody[c->b].mixed))
+            continue;
+        a = w->bodies[c->a].inv_m;
+        b = w->bodies[c->b].inv_m;
+        if (!cr_eq(a, 0.0f) && !cr_eq(b, 0.0f) &&
+            (cr_gt(a, cr_mul(CR_SOFT_MASS_RATIO, b)) || cr_gt(b, cr_mul(CR_SOFT_MASS_RATIO, a))))
+            c->flags |= CR_CONTACT_SOFT;
     }
 }
 #endif
@@ -609,7 +611,7 @@ static void cr_solve_velocity(carom_world *w, cr_contact *c, const cr_substep *s
     float bias[CR_MANIFOLD_POINTS], vn[CR_MANIFOLD_POINTS];
     float acc[CR_MANIFOLD_POINTS];
     int soft[CR_MANIFOLD_POINTS], any_soft = 0;
-    int soft_pair = biased && cr_soft_pair(w, c);
+    int soft_pair = biased && cr_soft_pair(c);
     float deep = soft_pair ? cr_soft_depth(w) : 0.0f;
     cr_rows_ctx x;
     int k;
@@ -734,7 +736,7 @@ static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap);
 static float cr_excess_overlap(const carom_world *w, const cr_contact *c, float sep)
 {
     if (c->flags & CR_CONTACT_RESTING) {
-        if (cr_soft_pair(w, c) && cr_lt(sep, cr_neg(cr_soft_depth(w))))
+        if (cr_soft_pair(c) && cr_lt(sep, cr_neg(cr_soft_depth(w))))
             return 0.0f;
         return cr_neg(cr_add(sep, w->scale.slop));
     }
