@@ -177,9 +177,10 @@ END_TEST
 
 /* Four walls 100 times the size of 20 small boxes: the walls are not
  * what a cell is sized for. The mean of all sizes is (20 * 0.1 + 4 * 10)
- * / 24 = 1.75; only the small boxes are within 4 times it, so the cell is
- * twice their size, 0.2 (with the walls counted it would be 3.5, and every
- * body would be compared with most of the others). */
+ * / 24 = 1.75; only the small boxes are within 4 times it, and they are all
+ * of one size, so the cell is their size, 0.1 (with the walls counted it
+ * would be 3.5, and every body would be compared with most of the
+ * others). */
 START_TEST(test_walls_do_not_set_the_cell)
 {
     static bp_fixture f;
@@ -202,10 +203,44 @@ START_TEST(test_walls_do_not_set_the_cell)
     }
     check_against_all_pairs(&f, n);
 #if CAROM_ENABLE_GRID
-    ck_assert_float_eq_tol(f.bp.cell, 0.2f, 1e-5f);
+    ck_assert_float_eq_tol(f.bp.cell, 0.1f, 1e-6f);
     ck_assert_int_eq(f.bp.grid_count, 20);
     ck_assert_int_eq(f.bp.big_count, 4);
 #endif
+}
+END_TEST
+
+/* The cell is the largest box that is not big, but never more than twice
+ * the mean: 19 boxes of side 0.1 and one of 0.3 have a mean of 0.11, so
+ * the cell is 0.22 and the 0.3 box is a big item, tested against the
+ * buckets it covers; 19 boxes of 0.1 and one of 0.15, a cell of 0.15 and
+ * no big item. The same pairs as every box against every other, both. */
+START_TEST(test_cell_is_the_largest_box_within_twice_the_mean)
+{
+    static bp_fixture f;
+    int n = 20, i, round;
+    for (round = 0; round < 2; ++round) {
+        float odd = round == 0 ? 0.3f : 0.15f;
+        fixture_init(&f, n);
+        for (i = 0; i < n; ++i) {
+            float side = i == 7 ? odd : 0.1f;
+            f.boxes[i].lo_x = 0.08f * (float)(i % 5);
+            f.boxes[i].lo_y = 0.09f * (float)(i / 5);
+            f.boxes[i].hi_x = f.boxes[i].lo_x + side;
+            f.boxes[i].hi_y = f.boxes[i].lo_y + side;
+            f.is_static[i] = 0;
+        }
+        check_against_all_pairs(&f, n);
+#if CAROM_ENABLE_GRID
+        if (round == 0) {
+            ck_assert_float_eq_tol(f.bp.cell, 0.22f, 1e-6f);
+            ck_assert_int_eq(f.bp.big_count, 1);
+        } else {
+            ck_assert_float_eq_tol(f.bp.cell, 0.15f, 1e-6f);
+            ck_assert_int_eq(f.bp.big_count, 0);
+        }
+#endif
+    }
 }
 END_TEST
 
@@ -414,6 +449,7 @@ Suite *suite_broadphase(void)
     tcase_add_test(tc, test_grid_equals_all_pairs_for_mixed_sizes);
     tcase_add_test(tc, test_grid_finds_pairs_of_walls_larger_than_a_cell);
     tcase_add_test(tc, test_walls_do_not_set_the_cell);
+    tcase_add_test(tc, test_cell_is_the_largest_box_within_twice_the_mean);
     tcase_add_test(tc, test_big_boxes_find_their_pairs_where_the_table_wraps);
     tcase_add_test(tc, test_pair_sort_orders_few_and_many_pairs);
     tcase_add_test(tc, test_grid_handles_huge_and_negative_coordinates);
