@@ -406,7 +406,8 @@ const char *carom_version(void);
 /** Unit rotation of `angle` radians (|angle| up to about 1e5 is accurate). */
 carom_rot carom_rot_from_angle(float angle);
 
-/** Angle of a rotation in (-pi, pi]. */
+/** Angle of a rotation in [-pi, pi]: (-pi, pi] to within rounding (a
+ * rotation of angle pi rounded to float may give the float of -pi). */
 float carom_rot_angle(carom_rot r);
 #endif /* CAROM_ENABLE_ANGLES (off: pass (cos, sin) pairs) */
 

@@ -1014,6 +1014,61 @@ printf 'carom-scene 1\nworld gravity=0,0\n' > "$tmp/empty.scene"
 run lean "$tmp/empty.scene"
 expect_rc 2 "lean of a scene without bodies"
 
+# ---- inputs an adversarial review found mishandled ------------------------------
+
+# category= and mask= are decimal unless 0x: a leading 0 is not octal (010
+# is ten, which meets mask=2; as octal, eight, the balls passed through)
+cat > "$tmp/cat.scene" <<'EOS'
+carom-scene 1
+world gravity=0,0 steps=120
+body circle radius=0.5 position=0,0 velocity=1,0 category=010
+body circle radius=0.5 position=3,0 mask=2
+EOS
+run run "$tmp/cat.scene"
+expect_rc 0 "category=010"
+awk -F, '$1 == "0" { x0 = $2 } $1 == "1" { x1 = $2 } END { exit !(x1 > x0 + 0.99) }' "$tmp/out"
+verdict $? "category=010 is ten: the balls collide, body 0 stays behind body 1"
+sed 's/category=010/category=09/' "$tmp/cat.scene" > "$tmp/cat9.scene"
+run run "$tmp/cat9.scene"
+expect_rc 0 "category=09 is the decimal 9"
+sed 's/category=010/category=0x/' "$tmp/cat.scene" > "$tmp/catx.scene"
+run run "$tmp/catx.scene"
+expect_rc 2 "category=0x (no digits)"
+# a control byte in a line is shown escaped in the message
+printf 'carom-scene 1\nbody\vcircle radius=1\n' > "$tmp/vt.scene"
+run run "$tmp/vt.scene"
+expect_rc 2 "a vertical tab inside a line type"
+stderr_has "'body\\x0bcircle'" "the vertical tab is shown as \\x0b"
+printf 'carom-scene\n' > "$tmp/nover.scene"
+run run "$tmp/nover.scene"
+stderr_has "the header line has no version" "a header without its version"
+printf 'carom-scene 1\nworld steps=99999999999999999999\n' > "$tmp/bigsteps.scene"
+run run "$tmp/bigsteps.scene"
+stderr_has "steps: '99999999999999999999' is out of range" "steps= past a long: out of range"
+printf 'carom-scene 1\nbody circle radius=1 position=\n' > "$tmp/novec.scene"
+run run "$tmp/novec.scene"
+stderr_has "position: missing value" "position= without its value"
+printf 'carom-scene 1\nworld dt=10.000001\n' > "$tmp/dt.scene"
+run run "$tmp/dt.scene"
+stderr_has "dt=10.000001:" "a refused dt is quoted to the digit that puts it past the limit"
+run run "$default_scene" --steps ' 5'
+expect_rc 2 "--steps with a leading blank (as the scene reader)"
+run profile "$default_scene" --weights "$tmp"
+stderr_has "Is a directory" "--weights DIRECTORY says it is a directory"
+awk 'BEGIN { printf "add 1"; for (i = 0; i < 300; i++) printf " "; print "" }' > "$tmp/long.w"
+run profile "$default_scene" --weights "$tmp/long.w"
+stderr_has "long.w:1: line longer than" "a weights line too long for the reader is named, not split"
+# render: an output that cannot be made is a usage error before any step;
+# a view no picture can show is refused; a tiny --fps is one frame a run
+run render "$default_scene" --png /nonexistent-dir-carom/x --steps 5
+expect_rc 2 "render --png into a directory that cannot be made"
+for view in -1e308,-1e308,1e308,1e308 0,0,1e-300,1e-300 0,0,1,1e-320; do
+    run render "$default_scene" -o "$tmp/v.svg" --steps 5 --view="$view"
+    expect_rc 2 "render --view=$view"
+done
+run render "$default_scene" -o "$tmp/fps.svg" --steps 50 --fps 1e-300
+expect_rc 0 "render --fps 1e-300"
+
 # ---- summary -------------------------------------------------------------------
 
 echo "$passed passed, $failed failed"

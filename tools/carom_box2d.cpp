@@ -44,7 +44,7 @@ const char usage[] =
     "\n"
     "Step a carom scene file (docs/scene-format.md) with Box2D 2.4.1 and write\n"
     "the final state of every body to stdout in build/carom's CSV format:\n"
-    "body,x,y,angle,vx,vy,omega (x, y: body origin; angle in (-pi, pi];\n"
+    "body,x,y,angle,vx,vy,omega (x, y: body origin; angle in [-pi, pi];\n"
     "vx, vy: velocity of the centre of mass; omega: angular velocity).\n"
     "\n"
     "The Box2D world gets the scene's gravity, dt, iterations, shapes,\n"
@@ -92,7 +92,7 @@ const char usage[] =
     "\n"
     "exit status: 0 ok, 1 simulation error, 2 bad usage or bad scene\n";
 
-/* Angle of a rotation in (-pi, pi], like carom_rot_angle. */
+/* Angle of a rotation in [-pi, pi], like carom_rot_angle. */
 double wrap_angle(const b2Rot &q)
 {
     double a = std::atan2((double)q.s, (double)q.c);

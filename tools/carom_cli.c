@@ -29,6 +29,9 @@
 #include "scene.h"
 
 #define EXIT_SIM 1
+/* render --view: largest corner coordinate and smallest side, m */
+#define VIEW_MAX (10.0 * (double)CAROM_LIMIT_MAX_LENGTH)
+#define VIEW_MIN ((double)CAROM_LIMIT_MIN_SIZE)
 #define EXIT_USAGE CLI_EXIT_USAGE
 
 /* Scene files larger than this are refused (as tools/scene.c does). */
@@ -198,7 +201,7 @@ static void print_usage(FILE *f)
           "run: step a scene file (docs/scene-format.md; '-' reads stdin) and\n"
           "write the final state of every body to stdout as CSV:\n"
           "body,x,y,angle,vx,vy,omega (x, y: body origin; angle in radians in\n"
-          "(-pi, pi]; vx, vy: velocity of the centre of mass; omega: angular\n"
+          "[-pi, pi]; vx, vy: velocity of the centre of mass; omega: angular\n"
           "velocity). If the simulation stops with an error (exit 1), the state\n"
           "reached is still written, after a first line\n"
           "'# partial: stopped at step N of M: STATUS ...'.\n"
@@ -317,6 +320,15 @@ static int apply_option(sim_opts *o, const cli_parser *p)
             !(o->view[3] > o->view[1]))
             return cli_usage_error("carom", "--view: want X0,Y0,X1,Y1 with X0 < X1 and "
                                    "Y0 < Y1 (metres), got '%s'", v);
+        /* corners within ten times the longest coordinate a body may have,
+         * sides no shorter than the smallest body (a narrower view has no
+         * scale a picture can show: its pixels would be 1e300 per metre) */
+        if (fabs(o->view[0]) > VIEW_MAX || fabs(o->view[1]) > VIEW_MAX ||
+            fabs(o->view[2]) > VIEW_MAX || fabs(o->view[3]) > VIEW_MAX ||
+            o->view[2] - o->view[0] < VIEW_MIN || o->view[3] - o->view[1] < VIEW_MIN)
+            return cli_usage_error("carom", "--view: corners must be within %g m of the "
+                                   "origin and each side at least %g m, got '%s'",
+                                   VIEW_MAX, VIEW_MIN, v);
         o->fixed_view = 1;
         return 0;
     }
@@ -496,28 +508,62 @@ static void write_trace(FILE *f, const carom_world *w)
         write_state(f, w, i, prefix);
 }
 
+/* A text input file for --weights or --calibration: NULL with errno
+ * EISDIR for a directory (fopen opens one for reading, and every read
+ * fails, which read as an empty file). */
+static FILE *open_text(const char *path)
+{
+    struct stat sb;
+    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) {
+        errno = EISDIR;
+        return NULL;
+    }
+    return fopen(path, "r");
+}
+
+/* The next line of f into buf (1), 0 at the end; -1, with a message naming
+ * file and line, for a line longer than buf holds (fgets would split it,
+ * and its second part be read as the next line). */
+static int next_line(FILE *f, char *buf, size_t n, const char *path, int lineno)
+{
+    size_t len;
+    if (!fgets(buf, (int)n, f))
+        return 0;
+    len = strlen(buf);
+    if (len + 1 == n && buf[len - 1] != '\n' && !feof(f)) {
+        fprintf(stderr, "carom: %s:%d: line longer than %lu characters\n", path, lineno,
+                (unsigned long)(n - 2));
+        return -1;
+    }
+    return 1;
+}
+
 /* A weight preset name, or a file of "KIND WEIGHT" lines (all six kinds,
  * each once, weights finite and >= 0). */
 static int load_weights(const char *arg, carom_op_weights *out)
 {
     FILE *f;
     char line[256];
-    int lineno = 0, seen[CAROM_OP_COUNT] = {0}, k;
+    int lineno = 0, seen[CAROM_OP_COUNT] = {0}, k, got;
     if (carom_op_weights_preset(arg, out) == CAROM_OK)
         return 0;
-    f = fopen(arg, "r");
+    f = open_text(arg);
     if (!f) {
         fprintf(stderr, "carom: --weights: '%s' is neither a preset (seed, "
                         "cortex-m4f, cortex-m0) nor a readable file: %s\n",
                 arg, strerror(errno));
         return -1;
     }
-    while (fgets(line, sizeof line, f)) {
+    while ((got = next_line(f, line, sizeof line, arg, lineno + 1)) != 0) {
         char kind[32], extra[2];
         double v;
         char *hash = strchr(line, '#');
         int n;
         ++lineno;
+        if (got < 0) {
+            fclose(f);
+            return -1;
+        }
         if (hash)
             *hash = '\0';
         n = sscanf(line, "%31s %lf %1s", kind, &v, extra);
@@ -588,9 +634,9 @@ static const char *cal_row_name(int row)
 
 static int load_calibration(const char *path, calibration *cal)
 {
-    FILE *f = fopen(path, "r");
+    FILE *f = open_text(path);
     char line[512];
-    int lineno = 0, seen[CAL_ROWS] = {0}, header = 0, row;
+    int lineno = 0, seen[CAL_ROWS] = {0}, header = 0, row, got;
     if (!f) {
         fprintf(stderr, "carom: --calibration: cannot read '%s': %s\n", path, strerror(errno));
         return -1;
@@ -598,12 +644,16 @@ static int load_calibration(const char *path, calibration *cal)
     memset(cal, 0, sizeof *cal);
     strcpy(cal->name, "calibration");
     strcpy(cal->unit, "units");
-    while (fgets(line, sizeof line, f)) {
+    while ((got = next_line(f, line, sizeof line, path, lineno + 1)) != 0) {
         char word[64], rest[64], extra[2];
         double v[CAL_TERMS];
         char *hash = strchr(line, '#');
         int n;
         ++lineno;
+        if (got < 0) {
+            fclose(f);
+            return -1;
+        }
         if (hash)
             *hash = '\0';
         n = sscanf(line, "%63s", word);
@@ -1116,6 +1166,11 @@ static int cmd_sim(unsigned cmd, int argc, char **argv)
                         "nothing\n");
         return EXIT_USAGE;
     }
+    /* an output that cannot be opened is a usage error, before any step */
+    if (render && o.png_dir && render_png_dir(o.png_dir, err, sizeof err) != 0) {
+        fprintf(stderr, "carom: %s\n", err);
+        return EXIT_USAGE;
+    }
     if (read_scene(o.scene_path, &s, err, sizeof err) != 0) {
         fprintf(stderr, "carom: %s\n", err);
         return EXIT_USAGE;
@@ -1147,8 +1202,14 @@ static int cmd_sim(unsigned cmd, int argc, char **argv)
     }
     if (render) {
         double h = (double)s.world.dt;
-        every = o.every > 0 ? o.every
-                            : (long)floor(1.0 / ((o.fps > 0.0 ? o.fps : DEFAULT_FPS) * h) + 0.5);
+        if (o.every > 0) {
+            every = o.every;
+        } else {
+            /* steps per frame, at most one frame for the whole run (a tiny
+             * --fps: the cast of a huge quotient to long is undefined) */
+            double per = floor(1.0 / ((o.fps > 0.0 ? o.fps : DEFAULT_FPS) * h) + 0.5);
+            every = !(per < (double)s.steps) ? (s.steps > 0 ? s.steps : 1) : (long)per;
+        }
         if (every < 1)
             every = 1;
         frames = s.steps / every + 1 + (s.steps % every != 0);

@@ -3,6 +3,7 @@
  */
 #include "cli_options.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -114,7 +115,9 @@ int cli_long(const cli_parser *p, long lo, long hi, const char *want, long *out)
     long x;
     errno = 0;
     x = strtol(v, &end, 10);
-    if (*v == '\0' || *end != '\0' || errno || x < lo || x > hi) {
+    /* (strtol skips leading blanks; the scene reader does not) */
+    if (*v == '\0' || isspace((unsigned char)*v) || *end != '\0' || errno || x < lo ||
+        x > hi) {
         if (want)
             return cli_usage_error(p->prog, "--%s: want %s, got '%s'", p->opt->name, want, v);
         return cli_usage_error(p->prog, "--%s: want an integer in [%ld, %ld], got '%s'",
@@ -132,7 +135,7 @@ int cli_double(const cli_parser *p, double lo, int lo_bound, double hi, const ch
     double x;
     errno = 0;
     x = strtod(v, &end);
-    if (*v == '\0' || *end != '\0' || errno || !isfinite(x) ||
+    if (*v == '\0' || isspace((unsigned char)*v) || *end != '\0' || errno || !isfinite(x) ||
         (lo_bound == CLI_OPEN ? !(x > lo) : !(x >= lo)) || x > hi)
         return cli_usage_error(p->prog, "--%s: want %s, got '%s'", p->opt->name, want, v);
     *out = x;

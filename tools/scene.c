@@ -25,15 +25,39 @@ typedef struct parser {
     size_t errlen;
 } parser;
 
+/* s for a message: control bytes (below 0x20, and 0x7f) as \xNN, cut to
+ * fit buf; UTF-8 passes as it is */
+static const char *printable(const char *s, char *buf, size_t len)
+{
+    size_t o = 0;
+    for (; *s && o + 5 < len; ++s) {
+        unsigned char c = (unsigned char)*s;
+        if (c >= 0x20u && c != 0x7fu)
+            buf[o++] = (char)c;
+        else
+            o += (size_t)snprintf(buf + o, len - o, "\\x%02x", c);
+    }
+    if (*s && o + 4 <= len) {
+        memcpy(buf + o, "...", 3);
+        o += 3;
+    }
+    buf[o] = '\0';
+    return buf;
+}
+
 static int fail(parser *p, const char *fmt, ...)
 {
     va_list ap;
+    char msg[1024];
     int n = snprintf(p->err, p->errlen, "%s:%d: ", p->name, p->line);
     if (n < 0 || (size_t)n >= p->errlen)
         return -1;
     va_start(ap, fmt);
-    vsnprintf(p->err + n, p->errlen - (size_t)n, fmt, ap);
+    vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    /* the scene's own text quoted in it: control and other non-printing
+     * bytes as \xNN (a vertical tab or form feed printed raw hid itself) */
+    printable(msg, p->err + n, p->errlen - (size_t)n);
     return -1;
 }
 
@@ -67,8 +91,10 @@ static int parse_long(parser *p, const char *key, const char *s, long *out)
         return fail(p, "%s: malformed integer '%s'", key, s);
     errno = 0;
     v = strtol(s, &end, 10);
-    if (end == s || *end != '\0' || errno == ERANGE)
+    if (end == s || *end != '\0')
         return fail(p, "%s: malformed integer '%s'", key, s);
+    if (errno == ERANGE)
+        return fail(p, "%s: '%s' is out of range", key, s);
     *out = v;
     return 0;
 }
@@ -81,6 +107,8 @@ static int parse_vec(parser *p, const char *key, const char *s, carom_vec2 *out)
     size_t n = strlen(s);
     if (n >= sizeof buf)
         return fail(p, "%s: vector too long", key);
+    if (n == 0)
+        return fail(p, "%s: missing value (want x,y)", key);
     memcpy(buf, s, n + 1);
     comma = strchr(buf, ',');
     if (!comma || strchr(comma + 1, ','))
@@ -258,9 +286,12 @@ static int parse_bits(parser *p, const char *key, const char *s, uint32_t *out)
 {
     char *end;
     unsigned long v;
+    int hex = s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
     errno = 0;
-    v = strtoul(s, &end, 0);
-    if (*s == '\0' || *s == '-' || *end != '\0' || errno == ERANGE || v > 0xffffffffUL)
+    /* base 10 unless 0x: a leading 0 is not octal (010 is ten) */
+    v = strtoul(hex ? s + 2 : s, &end, hex ? 16 : 10);
+    if (*s == '\0' || (hex && !isxdigit((unsigned char)s[2])) || !isalnum((unsigned char)*s) ||
+        *end != '\0' || errno == ERANGE || v > 0xffffffffUL)
         return fail(p, "%s: want a 32-bit unsigned number (decimal or 0x hex), got '%s'", key,
                     s);
     *out = (uint32_t)v;
@@ -297,46 +328,62 @@ static const char *range_hint(const carom_body_def *d, char *buf, size_t len)
     return buf;
 }
 
+/* A float in the fewest significant digits (6 to 9) that read back as
+ * the same float: 10.000001 as itself, not 10 (%g) or 9.99999983e+12 for
+ * -1e13 (%.9g). buf: 32 bytes. */
+static const char *shortest(float v, char *buf)
+{
+    int digits;
+    for (digits = 6; digits < 9; ++digits) {
+        snprintf(buf, 32, "%.*g", digits, (double)v);
+        if ((float)strtod(buf, NULL) == v)
+            return buf;
+    }
+    snprintf(buf, 32, "%.9g", (double)v);
+    return buf;
+}
+
 /* Which world value is outside carom's range, with its scene key and
  * the limit: each tried alone on a default world (1 if found). */
 static int world_range_hint(const carom_world_def *wd, char *buf, size_t len)
 {
+    char a[32], b[32];
     carom_world_def t = carom_default_world_def();
     t.dt = wd->dt;
     if (carom_world_def_validate(&t) != CAROM_OK) {
-        snprintf(buf, len, "dt=%g: the time step must be in [%g, %g] s "
-                 "(CAROM_LIMIT_MIN_DT, _MAX_DT)", (double)wd->dt,
+        snprintf(buf, len, "dt=%s: the time step must be in [%g, %g] s "
+                 "(CAROM_LIMIT_MIN_DT, _MAX_DT)", shortest(wd->dt, a),
                  (double)CAROM_LIMIT_MIN_DT, (double)CAROM_LIMIT_MAX_DT);
         return 1;
     }
     t = carom_default_world_def();
     t.gravity = wd->gravity;
     if (carom_world_def_validate(&t) != CAROM_OK) {
-        snprintf(buf, len, "gravity=%g,%g: each component must be within %g m/s^2 "
-                 "(CAROM_LIMIT_MAX_ACCEL)", (double)wd->gravity.x, (double)wd->gravity.y,
+        snprintf(buf, len, "gravity=%s,%s: each component must be within %g m/s^2 "
+                 "(CAROM_LIMIT_MAX_ACCEL)", shortest(wd->gravity.x, a), shortest(wd->gravity.y, b),
                  (double)CAROM_LIMIT_MAX_ACCEL);
         return 1;
     }
     t = carom_default_world_def();
     t.length_unit = wd->length_unit;
     if (carom_world_def_validate(&t) != CAROM_OK) {
-        snprintf(buf, len, "length-unit=%g: must be auto or in [%g, %g] m "
-                 "(CAROM_LIMIT_MIN_SIZE, _MAX_LENGTH)", (double)wd->length_unit,
+        snprintf(buf, len, "length-unit=%s: must be auto or in [%g, %g] m "
+                 "(CAROM_LIMIT_MIN_SIZE, _MAX_LENGTH)", shortest(wd->length_unit, a),
                  (double)CAROM_LIMIT_MIN_SIZE, (double)CAROM_LIMIT_MAX_LENGTH);
         return 1;
     }
     t = carom_default_world_def();
     t.linear_slop = wd->linear_slop;
     if (carom_world_def_validate(&t) != CAROM_OK) {
-        snprintf(buf, len, "slop=%g: must be auto or in [0, %g] m (CAROM_LIMIT_MAX_LENGTH)",
-                 (double)wd->linear_slop, (double)CAROM_LIMIT_MAX_LENGTH);
+        snprintf(buf, len, "slop=%s: must be auto or in [0, %g] m (CAROM_LIMIT_MAX_LENGTH)",
+                 shortest(wd->linear_slop, a), (double)CAROM_LIMIT_MAX_LENGTH);
         return 1;
     }
     t = carom_default_world_def();
     t.rest_speed = wd->rest_speed;
     if (carom_world_def_validate(&t) != CAROM_OK) {
-        snprintf(buf, len, "rest-speed=%g: must be auto or in [0, %g] m/s "
-                 "(CAROM_LIMIT_MAX_SPEED)", (double)wd->rest_speed,
+        snprintf(buf, len, "rest-speed=%s: must be auto or in [0, %g] m/s "
+                 "(CAROM_LIMIT_MAX_SPEED)", shortest(wd->rest_speed, a),
                  (double)CAROM_LIMIT_MAX_SPEED);
         return 1;
     }
@@ -584,6 +631,10 @@ int scene_parse(const char *name, const char *text, scene *s, char *err,
                 *extra++ = '\0';
                 while (*extra == ' ')
                     ++extra;
+            }
+            if (*rest == '\0') {
+                fail(&p, "the header line has no version (want 'carom-scene 1')");
+                goto error;
             }
             if (strcmp(rest, "1") != 0) {
                 fail(&p, "unsupported scene version '%s' (this reader knows 1)", rest);

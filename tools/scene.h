@@ -61,7 +61,7 @@ int scene_build_world(const scene *s, carom_world **w, void **mem, char *err,
 /* carom_world_release(w), then free(mem); either may be NULL. */
 void scene_free_world(carom_world *w, void *mem);
 
-/* Angle of a rotation in (-pi, pi]: carom's own carom_rot_angle(), or, in
+/* Angle of a rotation in [-pi, pi]: carom's own carom_rot_angle(), or, in
  * a build without CAROM_ENABLE_ANGLES, libm's atan2 (the same at angle 0,
  * the only angle `carom lean` leaves such a build). */
 float scene_rot_angle(carom_rot r);

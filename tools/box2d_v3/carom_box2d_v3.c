@@ -53,7 +53,7 @@ static const char usage[] =
     "\n"
     "Step a carom scene file (docs/scene-format.md) with Box2D v3 and write\n"
     "the final state of every body to stdout in build/carom's CSV format:\n"
-    "body,x,y,angle,vx,vy,omega (x, y: body origin; angle in (-pi, pi];\n"
+    "body,x,y,angle,vx,vy,omega (x, y: body origin; angle in [-pi, pi];\n"
     "vx, vy: velocity of the centre of mass; omega: angular velocity).\n"
     "\n"
     "The Box2D world gets the scene's gravity, dt, shapes (polygons as given,\n"
@@ -131,7 +131,7 @@ static bool parse_double(const char *v, double *out)
     return true;
 }
 
-/* Angle of a rotation in (-pi, pi], by carom's own carom_rot_angle, so
+/* Angle of a rotation in [-pi, pi], by carom's own carom_rot_angle, so
  * that both engines' CSVs convert (cos, sin) pairs to angles the same way
  * (a double atan2 can differ from it in the last float bit). */
 static double wrap_angle(b2Rot q)

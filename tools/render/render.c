@@ -230,9 +230,9 @@ static void put_body(FILE *f, const render_movie *m, const view *v,
             turns = 1;
     }
     fprintf(f, "<g id=\"body%d\" transform=\"translate(", b);
-    put_num(f, px_x(v, p0->x));
+    put_num(f, px_x(v, (double)p0->x));
     fputc(',', f);
-    put_num(f, px_y(v, p0->y));
+    put_num(f, px_y(v, (double)p0->y));
     fputs(")\">", f);
     if (moves) {
         fputs("\n", f);
@@ -243,9 +243,9 @@ static void put_body(FILE *f, const render_movie *m, const view *v,
             const render_pose *p = &m->poses[(size_t)fr * (size_t)m->body_count + (size_t)b];
             if (fr)
                 fputc(';', f);
-            put_num(f, px_x(v, p->x));
+            put_num(f, px_x(v, (double)p->x));
             fputc(',', f);
-            put_num(f, px_y(v, p->y));
+            put_num(f, px_y(v, (double)p->y));
         }
         fputs("\"/>\n", f);
     }
@@ -352,9 +352,9 @@ int render_svg(FILE *f, const render_movie *m, const render_options *o)
         for (i = 0; i < m->impact_count; ++i) {
             const render_impact *im = &m->impacts[i];
             fputs("<circle class=\"impact\" cx=\"", f);
-            put_num(f, px_x(&v, im->x));
+            put_num(f, px_x(&v, (double)im->x));
             fputs("\" cy=\"", f);
-            put_num(f, px_y(&v, im->y));
+            put_num(f, px_y(&v, (double)im->y));
             fprintf(f, "\" r=\"%g\" fill=\"%s\" stroke=\"#ffffff\" opacity=\"0\">",
                     MARKER_PX, MARKER_FILL);
             if (animated) {
@@ -430,6 +430,22 @@ static void gp_quoted(FILE *f, const char *s)
     fputc('\'', f);
 }
 
+int render_png_dir(const char *dir, char *err, size_t errlen)
+{
+    struct stat sb;
+    if (stat(dir, &sb) != 0) {
+        if (mkdir(dir, 0777) != 0) {
+            snprintf(err, errlen, "--png: cannot make directory '%s': %s", dir,
+                     strerror(errno));
+            return -1;
+        }
+    } else if (!S_ISDIR(sb.st_mode)) {
+        snprintf(err, errlen, "--png: '%s' exists and is not a directory", dir);
+        return -1;
+    }
+    return 0;
+}
+
 int render_png(const char *dir, const render_movie *m, const render_options *o,
                char *err, size_t errlen)
 {
@@ -443,16 +459,8 @@ int render_png(const char *dir, const render_movie *m, const render_options *o,
     double show = MARKER_SECONDS, x1 = v.x0 + v.width / v.s;
     double y0 = v.y1 - (v.height - v.top) / v.s;
 
-    if (stat(dir, &sb) != 0) {
-        if (mkdir(dir, 0777) != 0) {
-            snprintf(err, errlen, "--png: cannot make directory '%s': %s", dir,
-                     strerror(errno));
-            return -1;
-        }
-    } else if (!S_ISDIR(sb.st_mode)) {
-        snprintf(err, errlen, "--png: '%s' exists and is not a directory", dir);
+    if (render_png_dir(dir, err, errlen) != 0)
         return -1;
-    }
     if (!render_have_gnuplot()) {
         snprintf(err, errlen, "--png needs gnuplot, which is not on PATH "
                               "(Debian: apt-get install gnuplot-nox)");

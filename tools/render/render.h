@@ -74,6 +74,10 @@ int render_svg(FILE *f, const render_movie *m, const render_options *o);
 /** 1 if a `gnuplot` executable is on PATH. */
 int render_have_gnuplot(void);
 
+/* Make directory `dir` for --png frames if it is missing; 0, or -1 with a
+ * message in err when it cannot be made or is not a directory. */
+int render_png_dir(const char *dir, char *err, size_t errlen);
+
 /** Write DIR/frame-00000.png ... one per frame with gnuplot (DIR is made
  * if missing). Returns 0, or -1 with a message in err. */
 int render_png(const char *dir, const render_movie *m, const render_options *o,
