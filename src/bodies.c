@@ -49,6 +49,7 @@ carom_status carom_world_add_body(carom_world *w, const carom_body_def *def,
         if (st != CAROM_OK)
             return st;
     }
+    b.flags = (unsigned short)(b.flags | CR_BODY_NEW);
     w->bodies[slot] = b;
     w->info[slot] = info;
     w->drift[slot].version = 0;

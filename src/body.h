@@ -29,6 +29,8 @@
                                 kinematic body in this step: its end pose
                                 is the guard's, not a path to sweep again
                                 (set and cleared within the guard) */
+#define CR_BODY_NEW 512u /* added since the last step: the step primes the
+                            solver only if a contact holds a new body */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little
