@@ -50,7 +50,10 @@
  * Any of these, and the body is put back at the pose where its path met
  * the static body, with the velocity of the meeting's time, and the
  * meeting takes Newton's frictionless impulse there (cr_meet_static); the
- * next step's contacts take it from there. A path that met the static
+ * next step's contacts take it from there. A body that touched the static
+ * body at the step's start meets it at the start pose, and the part that
+ * went in may be another: the points where it lies in the static body at
+ * its end pose, carried back to the start pose, take the impulse too. A path that met the static
  * body and left it (a bounce within the step, a body sliding off a
  * ledge) is none of them and changes nothing, so in a step with no stop
  * every bit is as without this guard.
@@ -574,6 +577,8 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     float slop = w->scale.slop, tol = cr_mul(CAROM_TOI_TOLERANCE, slop), inv_dt;
     float turn = 0.0f, toi = 0.0f, sep0, sep1, thr, rest_of_step;
     cr_v2 dx = cr_vsub(b1->x, b0->x), xt, xs;
+    int touching = 0;
+    cr_manifold late;
     cr_rot qt, qs;
     cr_drift still;
     cr_mover A, B;
@@ -658,6 +663,7 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     if (cr_le(sep0, tol)) {
         xt = b0->x;
         qt = b0->q;
+        touching = 1;
     } else {
         if (!cr_time_of_impact(&A, &B, 0.0f, dt, tol, &toi))
             return 0;
@@ -733,9 +739,29 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
             return 1;
     }
 #endif
+    /* met where it touched at the step's start: the part of it that went
+     * in may be another (a thin plank standing on one end, spinning its
+     * far end down onto the floor; put back with the touching end alone,
+     * which rises, it kept its spin and was put back again every step,
+     * frozen in the air). The points where it lies in the static body at
+     * its end pose, carried back to the start pose with it, take the
+     * meeting too */
+    late.count = 0;
+    if (touching && !moving &&
+        cr_collide(ss, S->x, S->q, sd, b1->x, b1->q, cr_add(tol, slop), w->scale.face_tol,
+                   &late)) {
+        int k;
+        for (k = 0; k < late.count; ++k)
+            late.pts[k].p = cr_vadd(xt, cr_rotate(qt, cr_inv_rotate(b1->q,
+                                                                   cr_vsub(late.pts[k].p, b1->x))));
+    }
     b1->x = xt;
     b1->q = qt;
     cr_meet_static(w, i, s, &m, moving, S->x);
+    if (late.count > 0) {
+        cr_meet_static(w, i, s, &late, moving, S->x);
+        cr_meet_static(w, i, s, &m, moving, S->x);
+    }
     return 1;
 }
 
