@@ -31,6 +31,10 @@
                                 (set and cleared within the guard) */
 #define CR_BODY_NEW 512u /* added since the last step: the step primes the
                             solver only if a contact holds a new body */
+#define CR_BODY_PUT_BACK 1024u /* the continuous guard put it back at its
+                                  start pose, where it touched a static
+                                  body, in this step ... */
+#define CR_BODY_PUT_BACK_LAST 2048u /* ... and in the last step */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

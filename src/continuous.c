@@ -762,6 +762,18 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
         cr_meet_static(w, i, s, &late, moving, S->x);
         cr_meet_static(w, i, s, &m, moving, S->x);
     }
+    if (touching && !moving) {
+        /* put back where it started two steps running: it has not moved
+         * since the last step, whatever its velocity says (a plate 1 mm
+         * thick lying on a floor, which gravity and its spin drove 0.8 mm
+         * into the floor every step, with no point approaching it): it
+         * is still, and says so */
+        if (b1->flags & CR_BODY_PUT_BACK_LAST) {
+            b1->v = cr_v(0.0f, 0.0f);
+            b1->w = 0.0f;
+        }
+        b1->flags = (unsigned short)(b1->flags | CR_BODY_PUT_BACK);
+    }
     return 1;
 }
 
@@ -902,6 +914,14 @@ static void cr_continuous_carried(carom_world *w, float dt)
 void cr_continuous_statics(carom_world *w, float dt)
 {
     int k;
+
+    for (k = 0; k < w->awake_count; ++k) {
+        cr_body *b = &w->bodies[w->awake[k]];
+        unsigned f = b->flags & ~(unsigned)(CR_BODY_PUT_BACK | CR_BODY_PUT_BACK_LAST);
+        if (b->flags & CR_BODY_PUT_BACK)
+            f |= CR_BODY_PUT_BACK_LAST;
+        b->flags = (unsigned short)f;
+    }
 
     for (k = 0; k < w->pair_count; ++k) {
         const cr_pair *p = &w->pairs[k];
