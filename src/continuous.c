@@ -53,10 +53,11 @@
  * next step's contacts take it from there. A body that touched the static
  * body at the step's start meets it at the start pose, and the part that
  * went in may be another: the points where it lies in the static body at
- * its end pose, carried back to the start pose, take the impulse too. A path that met the static
- * body and left it (a bounce within the step, a body sliding off a
- * ledge) is none of them and changes nothing, so in a step with no stop
- * every bit is as without this guard.
+ * its end pose, carried back to the start pose, take the impulse too;
+ * one put back where it started two steps running is still. A path that
+ * met the static body and left it (a bounce within the step, a body
+ * sliding off a ledge) is none of them and changes nothing, so in a step
+ * with no stop every bit is as without this guard.
  *
  * Kinematic bodies are held against the same way: no impulse moves them
  * either. One moves uniformly through the step, so the body's path is
