@@ -11,6 +11,8 @@
 #include "island.h"
 #include "touch.h"
 
+static void cr_wake_neighbours(carom_world *w, int s);
+
 carom_status carom_world_add_body(carom_world *w, const carom_body_def *def,
                                   int *id)
 {
@@ -61,6 +63,11 @@ carom_status carom_world_add_body(carom_world *w, const carom_body_def *def,
     w->prime = 1;
     w->grid_valid = 0;
     w->scale_valid = 0;
+    /* a static or kinematic body, or a sensor, added over sleeping bodies
+     * wakes them: nothing else would (a dynamic body wakes what it
+     * touches through its pairs; before the first step nothing sleeps) */
+    if (w->steps > 0 && (b.type != CAROM_BODY_DYNAMIC || (b.flags & CR_BODY_SENSOR)))
+        cr_wake_neighbours(w, slot);
     if (id)
         *id = cr_body_id(w, slot);
     return CAROM_OK;
@@ -261,9 +268,10 @@ carom_status carom_body_set_transform(carom_world *w, int id, carom_vec2 positio
         !cr_v2_within(x, CAROM_LIMIT_MAX_LENGTH))
         return CAROM_ERR_OUT_OF_RANGE;
     b = &w->bodies[s];
-    cr_wake_neighbours(w, s); /* what rested on it where it was */
     {
-        /* the force callback may read the position: a0 at the new pose */
+        /* the force callback may read the position: a0 at the new pose
+         * (first: a refused pose leaves the world as it was, asleep or
+         * not) */
         cr_body moved = *b;
         cr_v2 a;
         float alpha;
@@ -277,6 +285,7 @@ carom_status carom_body_set_transform(carom_world *w, int id, carom_vec2 positio
 #if CAROM_ENABLE_COMPENSATED
         moved.xc = cr_v(0.0f, 0.0f);
 #endif
+        cr_wake_neighbours(w, s); /* what rested on it where it was */
         *b = moved;
     }
     cr_island_wake(w, s);
@@ -478,6 +487,10 @@ carom_status carom_body_set_friction(carom_world *w, int id, float mu)
 #endif
     w->info[s].friction = mu;
     cr_island_wake(w, s);
+    /* a static or kinematic body has no island: what sleeps on it wakes
+     * (a floor made slippery under a box asleep on a slope) */
+    if (w->bodies[s].type != CAROM_BODY_DYNAMIC)
+        cr_wake_neighbours(w, s);
     return CAROM_OK;
 }
 

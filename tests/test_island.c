@@ -303,6 +303,98 @@ START_TEST(test_box_sliding_slowly_off_an_incline_does_not_sleep)
 }
 END_TEST
 
+/* A box asleep on a floor, for the wake tests below: ids 0 floor, 1 box. */
+static tw asleep_on_floor(void)
+{
+    carom_world_def wd = sleepy_def(CAROM_METHOD_EVENTS, 4);
+    carom_body_def bd = carom_default_body_def();
+    tw t = tw_make(&wd);
+    bd.type = CAROM_BODY_STATIC;
+    ck_assert_int_eq(carom_body_def_set_box(&bd, 10.0f, 0.5f), CAROM_OK);
+    bd.position.y = -0.5f;
+    tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    ck_assert_int_eq(carom_body_def_set_box(&bd, 0.5f, 0.5f), CAROM_OK);
+    bd.position.y = 0.5f;
+    tw_add(&t, &bd);
+    ck_assert_int_gt(steps_to_sleep(&t, 1, 1, 600), 0);
+    return t;
+}
+
+/*
+ * What a program does to a world wakes what it concerns, and only then.
+ * A static body, a kinematic one or a sensor added over a sleeping box
+ * wakes it (nothing else would: a dynamic body wakes what it touches
+ * through its pairs); a floor made slippery wakes what sleeps on it (it
+ * has no island of its own); a teleport the force callback refuses
+ * leaves the world as it was, asleep (the header's promise for a failed
+ * call).
+ */
+static void far_force(void *user, int body, const carom_body_state *s, carom_vec2 *f,
+                      float *torque)
+{
+    (void)user;
+    (void)body;
+    (void)torque;
+    if (s->position.x > 100.0f)
+        f->x = 1e30f; /* beyond CAROM_LIMIT_MAX_ACCEL: the pose is refused */
+}
+
+START_TEST(test_what_a_program_changes_wakes_what_it_concerns)
+{
+    static const carom_body_type types[3] = {CAROM_BODY_STATIC, CAROM_BODY_KINEMATIC,
+                                             CAROM_BODY_DYNAMIC};
+    int k;
+    for (k = 0; k < 3; ++k) { /* (the dynamic one as a sensor) */
+        tw t = asleep_on_floor();
+        carom_body_def bd = carom_default_body_def();
+        bd.type = types[k];
+        bd.is_sensor = types[k] == CAROM_BODY_DYNAMIC;
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 0.3f, 0.3f), CAROM_OK);
+        bd.position.x = 0.4f;
+        bd.position.y = 0.5f;
+        ck_assert_int_eq(carom_body_is_awake(t.w, 1), 0);
+        tw_add(&t, &bd);
+        ck_assert_msg(carom_body_is_awake(t.w, 1), "type %d added over it: still asleep", k);
+        tw_free(&t);
+    }
+#if CAROM_ENABLE_BODY_EDITS
+    {
+        tw t = asleep_on_floor();
+        ck_assert_int_eq(carom_body_set_friction(t.w, 0, 0.0f), CAROM_OK);
+        ck_assert_msg(carom_body_is_awake(t.w, 1), "floor friction changed: box asleep");
+        tw_free(&t);
+    }
+#if CAROM_ENABLE_FORCES
+    {
+        carom_world_def wd = sleepy_def(CAROM_METHOD_EVENTS, 4);
+        carom_body_def bd = carom_default_body_def();
+        carom_rot r = {1.0f, 0.0f};
+        carom_vec2 far = {200.0f, 0.5f};
+        tw t;
+        wd.force_fn = far_force;
+        t = tw_make(&wd);
+        bd.type = CAROM_BODY_STATIC;
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 10.0f, 0.5f), CAROM_OK);
+        bd.position.y = -0.5f;
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 0.5f, 0.5f), CAROM_OK);
+        bd.position.y = 0.5f;
+        tw_add(&t, &bd);
+        bd.position.y = 1.5f;
+        tw_add(&t, &bd);
+        ck_assert_int_gt(steps_to_sleep(&t, 1, 2, 600), 0);
+        ck_assert_int_eq(carom_body_set_transform(t.w, 2, far, r), CAROM_ERR_OUT_OF_RANGE);
+        ck_assert_msg(!carom_body_is_awake(t.w, 1) && !carom_body_is_awake(t.w, 2),
+                      "a refused teleport woke the stack");
+        tw_free(&t);
+    }
+#endif
+#endif
+}
+END_TEST
+
 Suite *suite_island(void)
 {
     Suite *s = suite_create("island");
@@ -313,6 +405,7 @@ Suite *suite_island(void)
     tcase_add_test(tc, test_leaning_tower_past_its_edge_falls_asleep_or_not);
     tcase_add_test(tc, test_slow_bodies_in_zero_gravity_do_not_sleep_short_of_an_impact);
     tcase_add_test(tc, test_box_sliding_slowly_off_an_incline_does_not_sleep);
+    tcase_add_test(tc, test_what_a_program_changes_wakes_what_it_concerns);
     suite_add_tcase(s, tc);
     return s;
 }
