@@ -286,6 +286,8 @@ carom_status carom_body_set_transform(carom_world *w, int id, carom_vec2 positio
         moved.xc = cr_v(0.0f, 0.0f);
 #endif
         cr_wake_neighbours(w, s); /* what rested on it where it was */
+        moved.flags = (unsigned short)(moved.flags | CR_BODY_TELEPORTED);
+        w->teleported = 1;
         *b = moved;
     }
     cr_island_wake(w, s);

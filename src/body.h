@@ -35,6 +35,8 @@
                                   start pose, where it touched a static
                                   body, in this step ... */
 #define CR_BODY_PUT_BACK_LAST 2048u /* ... and in the last step */
+#define CR_BODY_TELEPORTED 4096u /* set_transform since the last step: its
+                                    touches are found anew, none carried */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

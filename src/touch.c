@@ -209,8 +209,17 @@ void cr_touch_update(carom_world *w)
         const cr_touch *t = &w->touch[i];
         int b = t->b & ~CR_TOUCH_SENSOR;
         if (cr_still(&w->bodies[t->a]) && cr_still(&w->bodies[b]) &&
-            !cr_moved_in_step(w, t->a) && !cr_moved_in_step(w, b))
+            !cr_moved_in_step(w, t->a) && !cr_moved_in_step(w, b) &&
+            !((w->bodies[t->a].flags | w->bodies[b].flags) & CR_BODY_TELEPORTED))
             w->touch_next[n++] = *t;
+    }
+    /* (a body teleported before the step moved where the step's copy
+     * cannot see: a static sensor moved off a ball that then fell asleep
+     * in the step kept touching it, 1.7 m away) */
+    if (w->teleported) {
+        for (i = 0; i < w->slot_count; ++i)
+            w->bodies[i].flags = (unsigned short)(w->bodies[i].flags & ~CR_BODY_TELEPORTED);
+        w->teleported = 0;
     }
     cr_touch_sort(w, w->touch_next, n);
     /* a pair both found and carried (its bodies fell asleep this step)

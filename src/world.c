@@ -415,6 +415,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->grid_valid = 0;
     w->carried_count = 0;
     w->escaped_count = 0;
+    w->teleported = 0;
     w->sensor_count = 0;
     w->active = CR_AT(active, int);
     w->active_count = 0;

@@ -206,6 +206,7 @@ struct carom_world {
     int carried_count; /* continuous guard: bodies flagged CR_BODY_CARRIED
                           in this step (cleared within it) */
     int escaped_count;
+    int teleported;   /* a body was teleported since the last touch update */
     int sensor_count;         /* sensor bodies in the world */
 
     carom_profile *profile;   /* attached counters, or NULL */
