@@ -156,6 +156,26 @@ float cr_contact_approach(const carom_world *w, const cr_contact *c)
     return fastest;
 }
 
+float cr_contact_recede(const carom_world *w, const cr_contact *c)
+{
+    const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+    const cr_solver_body *sa = &w->sbody[c->a], *sb = &w->sbody[c->b];
+    float slowest = 0.0f;
+    int k, touching = 0;
+    for (k = 0; k < c->count; ++k) {
+        const cr_contact_point *p = &c->pts[k];
+        float vn;
+        if (cr_gt(cr_current_sep(c, p, sa, sb), w->scale.spec))
+            continue;
+        vn = cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
+                             cr_point_velocity(A->v, A->w, p->ra)),
+                     c->n);
+        slowest = touching ? cr_min(slowest, vn) : vn;
+        touching = 1;
+    }
+    return slowest;
+}
+
 /* Largest turn of a polygon in a step (rad) for which the contact solver
  * takes its new contacts in the events methods. The solver follows the
  * anchor points of the step's start, turned with the body: a polygon that
@@ -193,10 +213,18 @@ int cr_solver_classify(carom_world *w, int events)
              * at 10 m/s, were left here to the impacts and there to the
              * solver, after this step's solve: neither, for ever, and
              * they sank into each other */
-            take = !cr_gt(cr_contact_approach(w, c),
-                          cr_add(cr_rest_speed(w, c->a, c->b),
-                                 cr_mul(CR_IMPACT_REL_TOL, cr_pair_speed(w, c->a, c->b)))) &&
-                   !cr_turns_fast(w, A) && !cr_turns_fast(w, B);
+            float bound = cr_add(cr_rest_speed(w, c->a, c->b),
+                                 cr_mul(CR_IMPACT_REL_TOL, cr_pair_speed(w, c->a, c->b)));
+            /* and a pair whose touching points all leave faster is
+             * parting, not resting: the search follows it past the
+             * touch to its next impact (two boxes that bounced apart at
+             * half their approach in zero gravity, whose turn brought
+             * another corner onto the other's face 4 ms into the next
+             * step: the solver's, that impact was taken at the step's
+             * end, 14 ms late) */
+            take = !cr_gt(cr_contact_approach(w, c), bound) &&
+                   !cr_gt(cr_contact_recede(w, c), bound) && !cr_turns_fast(w, A) &&
+                   !cr_turns_fast(w, B);
         }
         if (take) {
             c->flags |= CR_CONTACT_SOLVE;

@@ -86,6 +86,10 @@ int cr_solver_restitution(carom_world *w);
  * velocities (>= 0). */
 float cr_contact_approach(const carom_world *w, const cr_contact *c);
 
+/* The slowest speed at which the touching points of contact c leave each
+ * other (negative: one approaches); 0 if none touches. */
+float cr_contact_recede(const carom_world *w, const cr_contact *c);
+
 /* The approach speed above which contact (a, b) is an impact. */
 float cr_rest_speed(const carom_world *w, int a, int b);
 

@@ -1602,6 +1602,68 @@ START_TEST(test_overlap_closing_slower_than_rounding_is_pushed_apart)
 }
 END_TEST
 
+/*
+ * Two spinning boxes in zero gravity, e = 0.5, no friction: a corner of A
+ * strikes a face of B, they bounce apart at half their approach, and the
+ * turn brings a corner of B onto a face of A 4.3 ms later, in the next
+ * step. The reference (a double-precision solver outside carom: each
+ * impact instant by bisection on the exact separating-axis gap of the two
+ * uniformly moving and turning boxes, the impulse by Newton's law at the
+ * touching corner) has exactly two impacts, at t = 0.3152597 s
+ * (approach 1.7539 m/s) and t = 0.3195693 s (approach 2.7449 m/s), and
+ * leaves A spinning at 2.7340 rad/s. The second impact was taken at the
+ * step's end, 14 ms late, because the pair, touching and parting at the
+ * next step's start, was handed to the contact solver as resting.
+ */
+START_TEST(test_second_impact_of_a_parting_pair_is_taken_at_its_instant)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    const carom_event *ev;
+    carom_body_state a;
+    int n = 0, steps, total = 0;
+    float t2 = -1.0f, v2 = 0.0f;
+    tw t;
+    wd.gravity.y = 0.0f;
+    wd.max_bodies = 2;
+    t = tw_make(&wd);
+    ck_assert_int_eq(carom_body_def_set_box(&bd, 0.4f, 0.2f), CAROM_OK);
+    bd.position.x = -1.5f;
+    bd.rotation = carom_rot_from_angle(0.7f);
+    bd.velocity.x = 3.0f;
+    bd.velocity.y = 0.2f;
+    bd.angular_velocity = 1.0f;
+    bd.restitution = 0.5f;
+    bd.friction = 0.0f;
+    tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    ck_assert_int_eq(carom_body_def_set_box(&bd, 0.3f, 0.3f), CAROM_OK);
+    bd.rotation = carom_rot_from_angle(0.1f);
+    bd.angular_velocity = -2.0f;
+    bd.density = 2.0f;
+    bd.restitution = 0.5f;
+    bd.friction = 0.0f;
+    tw_add(&t, &bd);
+    for (steps = 0; steps < 40; ++steps) {
+        int i;
+        tw_steps(&t, 1);
+        ev = carom_world_events(t.w, &n);
+        for (i = 0; i < n; ++i, ++total)
+            if (total == 1) {
+                t2 = ev[i].t;
+                v2 = ev[i].approach_speed;
+            }
+    }
+    ck_assert_int_eq(total, 2);
+    ck_assert_msg(fabs(t2 - 0.3195693) < 2e-5, "second impact at %.7f s", (double)t2);
+    ck_assert_msg(fabs(v2 - 2.7449) < 3e-3, "second approach %.5f m/s", (double)v2);
+    a = tw_state(&t, 0);
+    ck_assert_msg(fabs(a.angular_velocity - 2.7340) < 3e-3, "A spins at %.5f rad/s",
+                  (double)a.angular_velocity);
+    tw_free(&t);
+}
+END_TEST
+
 Suite *suite_events(void)
 {
     Suite *s = suite_create("events");
@@ -1639,6 +1701,7 @@ Suite *suite_events(void)
     tcase_add_test(to, test_impact_budget_of_one_hands_a_dense_gas_to_the_solver);
     tcase_add_test(to, test_events_method_keeps_stacks_standing_and_balls_settling);
     tcase_add_test(to, test_ball_rests_even_when_g_dt_exceeds_rest_speed);
+    tcase_add_test(to, test_second_impact_of_a_parting_pair_is_taken_at_its_instant);
     tcase_add_test(ts, test_two_ball_symmetric_strike_stays_symmetric);
     tcase_add_test(ts, test_three_ball_symmetric_strike_stays_symmetric);
     tcase_add_test(ts, test_centre_struck_rack_stays_symmetric);
