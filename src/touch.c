@@ -28,6 +28,20 @@ static int cr_touch_less(const cr_touch *x, const cr_touch *y)
     return x->a < y->a || (x->a == y->a && xb < yb);
 }
 
+/* Is touch t among the n sorted touches of list? */
+static int cr_touch_in(const cr_touch *list, int n, const cr_touch *t)
+{
+    int lo = 0, hi = n;
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (cr_touch_less(&list[mid], t))
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < n && !cr_touch_less(t, &list[lo]);
+}
+
 /* Sort by (a, b) in linear time: two counting passes over body slots (by
  * b, then stably by a), through the pair sort's scratch, free at the end
  * of the step (it holds max_pairs pairs, far more than as many touches). */
@@ -181,7 +195,7 @@ static int cr_escaped_overlaps(carom_world *w, int n)
 
 void cr_touch_update(carom_world *w)
 {
-    int n = 0, i, j, k;
+    int n = 0, i, j, k, found;
     w->touch_event_count = 0;
     w->touch_events_dropped = 0;
     for (k = 0; k < w->pair_count && n < w->touch_cap; ++k) {
@@ -204,13 +218,20 @@ void cr_touch_update(carom_world *w)
     /* what nothing could change keeps touching: two bodies that do not
      * move and did not move in this step (a body that fell asleep at its
      * end was simulated, and its pairs say whether it still touches: the
-     * continuous guard can have put it back off a sensor it had entered) */
+     * continuous guard can have put it back off a sensor it had entered).
+     * A touch the pairs found already is not taken twice: with the
+     * copies, a world of two 4-box stacks, one asleep, filled a list of 8
+     * (max_pairs) and lost a touch of the sleeping stack, which ended and
+     * began again though nothing moved */
+    found = n;
+    cr_touch_sort(w, w->touch_next, found);
     for (i = 0; i < w->touch_count && n < w->touch_cap; ++i) {
         const cr_touch *t = &w->touch[i];
         int b = t->b & ~CR_TOUCH_SENSOR;
         if (cr_still(&w->bodies[t->a]) && cr_still(&w->bodies[b]) &&
             !cr_moved_in_step(w, t->a) && !cr_moved_in_step(w, b) &&
-            !((w->bodies[t->a].flags | w->bodies[b].flags) & CR_BODY_TELEPORTED))
+            !((w->bodies[t->a].flags | w->bodies[b].flags) & CR_BODY_TELEPORTED) &&
+            !cr_touch_in(w->touch_next, found, t))
             w->touch_next[n++] = *t;
     }
     /* (a body teleported before the step moved where the step's copy

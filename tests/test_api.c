@@ -458,6 +458,72 @@ START_TEST(test_sensor_reports_overlap_without_impulse)
 }
 END_TEST
 
+/*
+ * Touches of sleeping bodies are kept, without events, while they hold.
+ * Stack A of 4 boxes falls asleep; stack B of 4 is added far away and
+ * falls asleep too; A is woken and sleeps again. Every box touches its
+ * neighbours throughout, so after the first begins of each stack no touch
+ * event may come at all. With max_pairs 8 (the 8 touches exactly), the
+ * touches found in a step's pairs and the same touches carried over for
+ * bodies that fell asleep filled the list twice over: a touch of the
+ * sleeping stack was lost, ended and began again.
+ */
+START_TEST(test_touches_of_sleeping_stacks_hold_without_events)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int k, s, begins = 0, ends = 0;
+    wd.max_bodies = 16;
+    wd.max_pairs = 8;
+    wd.max_contacts = 8;
+    t = tw_make(&wd);
+    bd.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&bd, 30.0f, 0.5f);
+    bd.position.y = -0.5f;
+    tw_add(&t, &bd);
+    for (s = 0; s < 2; ++s) {
+        bd = carom_default_body_def();
+        carom_body_def_set_box(&bd, 0.5f, 0.5f);
+        bd.position.x = s == 0 ? -10.0f : 10.0f;
+        for (k = 0; k < 4; ++k) {
+            bd.position.y = 0.5f + (float)k;
+            tw_add(&t, &bd);
+        }
+        for (k = 0; k < 600 && carom_body_is_awake(t.w, 1 + 4 * s + 3); ++k) {
+            int n, i;
+            const carom_touch_event *e;
+            tw_steps(&t, 1);
+            e = carom_world_touch_events(t.w, &n);
+            for (i = 0; i < n; ++i) {
+                begins += e[i].begin;
+                ends += !e[i].begin;
+            }
+        }
+        ck_assert_msg(!carom_body_is_awake(t.w, 1 + 4 * s), "stack %d awake", s);
+    }
+    ck_assert_int_eq(begins, 8);
+    {
+        carom_vec2 zero = {0.0f, 0.0f};
+        carom_body_state top = tw_state(&t, 4);
+        ck_assert_int_eq(carom_body_apply_impulse(t.w, 4, zero, top.center), CAROM_OK);
+    }
+    for (k = 0; k < 600; ++k) {
+        int n, i;
+        const carom_touch_event *e;
+        tw_steps(&t, 1);
+        e = carom_world_touch_events(t.w, &n);
+        for (i = 0; i < n; ++i) {
+            begins += e[i].begin;
+            ends += !e[i].begin;
+        }
+    }
+    ck_assert_int_eq(begins, 8);
+    ck_assert_int_eq(ends, 0);
+    tw_free(&t);
+}
+END_TEST
+
 /* A box dropped on the ground: one begin-touch when it lands, none while it
  * rests (or sleeps), one end-touch when it is thrown up. The buffer holds
  * max_touch_events; the rest are counted as dropped. */
@@ -1242,6 +1308,7 @@ Suite *suite_api(void)
     tcase_add_test(tf, test_filter_set_after_creation);
     tcase_add_test(te, test_sensor_reports_overlap_without_impulse);
     tcase_add_test(te, test_touch_events_begin_end_and_full_buffer);
+    tcase_add_test(te, test_touches_of_sleeping_stacks_hold_without_events);
     tcase_add_test(te, test_teleport_and_filter_keep_a_touch_that_holds);
     tcase_add_test(tq, test_box_and_point_queries_are_exact);
     tcase_add_test(tq, test_raycasts_are_exact_and_ordered);
