@@ -49,6 +49,10 @@ typedef struct cr_contact_point {
     float rel_vn;    /* normal relative velocity for restitution: at the
                         start of the step (discrete) or when the point first
                         pushes (events methods) */
+#if CAROM_ENABLE_FRICTION
+    float pt_bounce; /* tangent impulse of the restitution pass (its
+                        friction, within mu times the bounce's impulse) */
+#endif
     unsigned id;
 } cr_contact_point;
 

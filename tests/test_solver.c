@@ -862,6 +862,57 @@ START_TEST(test_sliding_box_decelerates_at_mu_g)
 }
 END_TEST
 
+/*
+ * Coulomb friction acts over a bounce's whole normal impulse. A disc of
+ * radius 0.5 at (1, -3) m/s spinning at 10 rad/s strikes a static floor,
+ * e = 1, mu = 0.3, no gravity. The normal impulse is (1 + e) m 3 = 6 m;
+ * sticking would take 2 m of tangent impulse (the contact point's slip,
+ * 1 + 10 * 0.5 = 6 m/s, over 1/m + r^2/I = 3/m), more than mu 6 m = 1.8
+ * m, so it slides: vx' = 1 - 1.8 = -0.8, vy' = 3. The discrete method
+ * bounded friction by the impulse that stopped the approach alone (3 m)
+ * and left vx' = +0.1. (Its spin, from the speculative lever arm, is
+ * first order in dt: not checked here.)
+ */
+START_TEST(test_bounce_bears_friction_over_its_whole_impulse)
+{
+    static const carom_method methods[3] = {CAROM_METHOD_EVENTS, CAROM_METHOD_DISCRETE,
+                                            CAROM_METHOD_FIRST_IMPACT};
+    int m;
+    for (m = 0; m < 3; ++m) {
+        carom_world_def wd = carom_default_world_def();
+        carom_body_def bd = carom_default_body_def();
+        carom_body_state d;
+        tw t;
+        int disc;
+        wd.method = methods[m];
+        wd.gravity.y = 0.0f;
+        wd.max_bodies = 2;
+        t = tw_make(&wd);
+        bd.type = CAROM_BODY_STATIC;
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 10.0f, 0.5f), CAROM_OK);
+        bd.position.y = -0.5f;
+        bd.restitution = 1.0f;
+        bd.friction = 0.3f;
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        bd.radius = 0.5f;
+        bd.position.y = 0.8f;
+        bd.velocity.x = 1.0f;
+        bd.velocity.y = -3.0f;
+        bd.angular_velocity = 10.0f;
+        bd.restitution = 1.0f;
+        bd.friction = 0.3f;
+        disc = tw_add(&t, &bd);
+        tw_steps(&t, 18);
+        d = tw_state(&t, disc);
+        ck_assert_msg(fabs(d.velocity.x - -0.8) < 1e-3 && fabs(d.velocity.y - 3.0) < 1e-3,
+                      "%s: v = (%g, %g), want (-0.8, 3)", carom_method_name(methods[m]),
+                      (double)d.velocity.x, (double)d.velocity.y);
+        tw_free(&t);
+    }
+}
+END_TEST
+
 Suite *suite_solver(void)
 {
     Suite *s = suite_create("solver");
@@ -885,6 +936,7 @@ Suite *suite_solver(void)
     tcase_add_test(tr, test_stack_of_five_boxes_holds_within_1mm_for_10s);
     tcase_add_test(tr, test_ball_with_restitution_below_one_comes_to_rest);
     tcase_add_test(tr, test_sliding_box_decelerates_at_mu_g);
+    tcase_add_test(tr, test_bounce_bears_friction_over_its_whole_impulse);
     tcase_add_loop_test(tr, test_heavy_box_landing_on_a_light_one_never_throws_it_up, 0, 16);
     tcase_add_loop_test(tr, test_heavy_on_light_stays_on_an_off_centre_floor, 0, 3);
     tcase_add_loop_test(tr, test_heavy_box_on_a_light_one_holds_on_a_slope, 0, 8);
