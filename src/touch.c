@@ -243,8 +243,8 @@ void cr_touch_update(carom_world *w)
         w->teleported = 0;
     }
     cr_touch_sort(w, w->touch_next, n);
-    /* a pair both found and carried (its bodies fell asleep this step)
-     * is there twice */
+    /* a sensor overlap of an escaped body found both in the pairs and
+     * by its query is there twice (carried touches are not: above) */
     for (i = 1, j = 1; i < n; ++i)
         if (cr_touch_less(&w->touch_next[j - 1], &w->touch_next[i]))
             w->touch_next[j++] = w->touch_next[i];
