@@ -379,7 +379,11 @@ typedef enum carom_status {
     CAROM_ERR_NOT_CONVEX,         /**< a reflex vertex */
     CAROM_ERR_WORLD_FULL,         /**< max_bodies reached */
     CAROM_ERR_BAD_BODY_ID,        /**< no such body */
-    CAROM_ERR_PAIR_CAPACITY,      /**< more candidate pairs than max_pairs;
+    CAROM_ERR_PAIR_CAPACITY,      /**< more candidate pairs than max_pairs,
+                                       or more touching pairs (the step's
+                                       candidates and the touches of
+                                       bodies asleep, which the touch list
+                                       of max_pairs entries also holds);
                                        the step was not taken */
     CAROM_ERR_CONTACT_CAPACITY,   /**< more contacts than max_contacts; the
                                        step was not taken */

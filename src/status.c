@@ -33,7 +33,7 @@ static const char *const cr_status_names[CAROM_STATUS_COUNT] = {
     "polygon is not convex",
     "world is full (max_bodies)",
     "no such body",
-    "more candidate pairs than max_pairs",
+    "more candidate or touching pairs than max_pairs",
     "more contacts than max_contacts",
     "capability compiled out (see carom_config.h)",
     "value outside carom's range (carom_config.h CAROM_LIMIT_*)",

@@ -193,6 +193,23 @@ static int cr_escaped_overlaps(carom_world *w, int n)
 }
 #endif
 
+int cr_touch_fits(const carom_world *w)
+{
+    int need = w->pair_count, i;
+    if (need + w->touch_count <= w->touch_cap)
+        return 1;
+    /* a touch with a body that moved is a candidate pair of the step
+     * (counted already); only those of two bodies that did not are
+     * carried over besides */
+    for (i = 0; i < w->touch_count && need <= w->touch_cap; ++i) {
+        const cr_touch *t = &w->touch[i];
+        if (!cr_body_moves(&w->bodies[t->a]) &&
+            !cr_body_moves(&w->bodies[t->b & ~CR_TOUCH_SENSOR]))
+            ++need;
+    }
+    return need <= w->touch_cap;
+}
+
 void cr_touch_update(carom_world *w)
 {
     int n = 0, i, j, k, found;
@@ -278,6 +295,12 @@ void cr_touch_forget(carom_world *w, int s)
 }
 
 #else
+
+int cr_touch_fits(const carom_world *w)
+{
+    (void)w;
+    return 1;
+}
 
 void cr_touch_update(carom_world *w)
 {

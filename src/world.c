@@ -981,6 +981,8 @@ static carom_status cr_step(carom_world *w)
     st = cr_check_state(w);
     if (st != CAROM_OK)
         return st;
+    if (!cr_touch_fits(w))
+        return CAROM_ERR_PAIR_CAPACITY;
     CR_PHASE(w, CAROM_PHASE_RESTING);
     cr_contacts_store(w);
     cr_island_sleep(w, dt);

@@ -524,6 +524,99 @@ START_TEST(test_touches_of_sleeping_stacks_hold_without_events)
 }
 END_TEST
 
+/* The touch list holds max_pairs touches: the step's candidate pairs and
+ * the touches of sleeping bodies, which are not candidate pairs. Three
+ * stacks of 4 boxes under max_pairs 10: with two asleep (8 touches), the
+ * third's 4 pairs make 12 touches. The step that would lose 2 of them
+ * fails with CAROM_ERR_PAIR_CAPACITY and is undone; a world that may grow
+ * takes a larger pool and steps on: 12 begins, no end. */
+static void *touch_grow_alloc(void *user, size_t bytes)
+{
+    ++*(int *)user;
+    return malloc(bytes);
+}
+
+static void touch_grow_release(void *user, void *block)
+{
+    (void)user;
+    free(block);
+}
+
+static void three_stacks(int grow)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    int k, s, grows = 0, begins = 0, ends = 0, failed = 0;
+    wd.max_bodies = 16;
+    wd.max_pairs = 10;
+    wd.max_contacts = 10;
+    if (grow) {
+        wd.grow.alloc = touch_grow_alloc;
+        wd.grow.release = touch_grow_release;
+        wd.grow.user = &grows;
+    }
+    t = tw_make(&wd);
+    bd.type = CAROM_BODY_STATIC;
+    carom_body_def_set_box(&bd, 30.0f, 0.5f);
+    bd.position.y = -0.5f;
+    tw_add(&t, &bd);
+    for (s = 0; s < 3 && !failed; ++s) {
+        bd = carom_default_body_def();
+        carom_body_def_set_box(&bd, 0.5f, 0.5f);
+        bd.position.x = 10.0f * (float)(s - 1);
+        for (k = 0; k < 4; ++k) {
+            bd.position.y = 0.5f + (float)k;
+            tw_add(&t, &bd);
+        }
+        for (k = 0; k < 600 && carom_body_is_awake(t.w, 1 + 4 * s + 3); ++k) {
+            int n, i;
+            const carom_touch_event *e;
+            carom_stats before, after;
+            carom_body_state b0 = tw_state(&t, 1 + 4 * s), b1;
+            carom_status st;
+            carom_world_get_stats(t.w, &before);
+            st = carom_world_step(t.w);
+            if (st != CAROM_OK) {
+                /* refused and undone */
+                ck_assert_int_eq(grow, 0);
+                ck_assert_int_eq(s, 2);
+                ck_assert_int_eq(st, CAROM_ERR_PAIR_CAPACITY);
+                carom_world_get_stats(t.w, &after);
+                ck_assert_int_eq(after.steps, before.steps);
+                b1 = tw_state(&t, 1 + 4 * s);
+                ck_assert(b1.center.y == b0.center.y && b1.velocity.y == b0.velocity.y);
+                failed = 1;
+                break;
+            }
+            e = carom_world_touch_events(t.w, &n);
+            for (i = 0; i < n; ++i) {
+                begins += e[i].begin;
+                ends += !e[i].begin;
+            }
+        }
+        if (!failed)
+            ck_assert_msg(!carom_body_is_awake(t.w, 1 + 4 * s), "stack %d awake", s);
+    }
+    if (grow) {
+        ck_assert_int_eq(begins, 12);
+        ck_assert_int_gt(grows, 0);
+    } else {
+        ck_assert_int_eq(failed, 1);
+        ck_assert_int_eq(begins, 8);
+    }
+    ck_assert_int_eq(ends, 0);
+    carom_world_release(t.w);
+    tw_free(&t);
+}
+
+START_TEST(test_a_touch_list_too_small_fails_the_step_or_grows)
+{
+    three_stacks(0);
+    three_stacks(1);
+}
+END_TEST
+
 /* A box dropped on the ground: one begin-touch when it lands, none while it
  * rests (or sleeps), one end-touch when it is thrown up. The buffer holds
  * max_touch_events; the rest are counted as dropped. */
@@ -1309,6 +1402,7 @@ Suite *suite_api(void)
     tcase_add_test(te, test_sensor_reports_overlap_without_impulse);
     tcase_add_test(te, test_touch_events_begin_end_and_full_buffer);
     tcase_add_test(te, test_touches_of_sleeping_stacks_hold_without_events);
+    tcase_add_test(te, test_a_touch_list_too_small_fails_the_step_or_grows);
     tcase_add_test(te, test_teleport_and_filter_keep_a_touch_that_holds);
     tcase_add_test(tq, test_box_and_point_queries_are_exact);
     tcase_add_test(tq, test_raycasts_are_exact_and_ordered);
