@@ -82,6 +82,11 @@ void cr_solver_update_deltas(carom_world *w);
  * were hit faster than the rest speed. Returns how many points bounced. */
 int cr_solver_restitution(carom_world *w);
 
+/* After a substep's impacts (events methods): the solver's contacts that
+ * an impact has turned into impacts to come are not its own for the rest
+ * of the substep (solver.c). */
+void cr_solver_release_struck(carom_world *w);
+
 /* Fastest normal approach of contact c's points at the bodies' current
  * velocities (>= 0). */
 float cr_contact_approach(const carom_world *w, const cr_contact *c);

@@ -919,7 +919,7 @@ static carom_status cr_step(carom_world *w)
     for (k = 0; k < n; ++k) {
         float t0 = cr_mul((float)k, h);
         float t1 = k + 1 == n ? dt : cr_mul((float)(k + 1), h);
-        int events_now = events && !w->budget_hit;
+        int events_now = events && !w->budget_hit, impacts_before;
         sub.t = t0;
         if (k > 0 && events_now) {
             CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
@@ -939,6 +939,7 @@ static carom_status cr_step(carom_world *w)
         cr_solver_solve(w, &sub, 1,
                         k == 0 && prime > 0 ? prime : w->def.iterations);
         cr_solver_set_drifts(w, &sub);
+        impacts_before = w->impacts_this_step;
         if (events_now) {
             CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
             cr_events_refresh(w, t0);
@@ -953,6 +954,11 @@ static carom_status cr_step(carom_world *w)
         cr_sync_active(w, t1);
         CR_PHASE(w, CAROM_PHASE_RESTING);
         cr_solver_update_deltas(w);
+        if (events_now && w->impacts_this_step > impacts_before) {
+            CR_PHASE(w, CAROM_PHASE_IMPACT_TIMING);
+            cr_solver_release_struck(w);
+            CR_PHASE(w, CAROM_PHASE_RESTING);
+        }
         cr_solver_correct(w, &sub, CR_CORRECT_SWEEPS);
         cr_solver_update_deltas(w);
         cr_solver_solve(w, &sub, 0, w->def.relax_iterations);
