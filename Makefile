@@ -283,7 +283,7 @@ help:
 	@echo "  make embedded-lean8k  the bounce and 5-box stack scenes with their lean capacities in 8 KB of world memory on the M0"
 	@echo "  make embedded-doc    regenerate docs/embedded.md (footprints, stack, memory, calibration; ~7 min)"
 	@echo "  make lean            SCENE=FILE: build/lean/libcarom.a and build/lean/carom for that scene, size table, bit-identical check"
-	@echo "  make lean-check      make lean on three example scenes, checked (seconds)"
+	@echo "  make lean-check      make lean on five example scenes, checked (seconds)"
 	@echo ""
 	@echo "install"
 	@echo "  make install         headers, libcarom.a, libcarom.so.$(VERSION), carom.pc, bin/carom, docs into DESTDIR/PREFIX"

@@ -671,8 +671,11 @@ typedef struct carom_stats {
     int max_impacts_used;  /**< most impacts in one step */
     int max_direct_used;   /**< most impulses of an exact island solve
                                 (CAROM_IMPACT_DIRECT_MAX; 0: none tried) */
-    int max_rows_used;     /**< most contact rows of one simultaneous
-                                impact solve (CAROM_IMPACT_ROWS_MAX) */
+    int max_rows_used;     /**< most contact rows one simultaneous impact
+                                solve had to have room for to look at
+                                every contact it would with more (a
+                                build whose CAROM_IMPACT_ROWS_MAX is this
+                                takes the same path to the last bit) */
     int awake_bodies;    /**< bodies simulated in the last step */
     int contacts;        /**< contacts in the last step */
     int grows;           /**< times a step took a larger pool from

@@ -13,8 +13,9 @@
 #                          fails unless the lean CLI's final state, events
 #                          and trace on FILE are byte-identical to the
 #                          default CLI's
-#   make lean-check        `make lean` on three example scenes (circles only;
-#                          a box stack; a gas), each in its own directory, x86-64
+#   make lean-check        `make lean` on five example scenes (circles only;
+#                          a box stack; a gas; a kinematic platform; filtered
+#                          balls), each in its own directory, x86-64
 #                          only, and a check that the header covers every
 #                          switch of include/carom_config.h
 #
@@ -30,9 +31,11 @@ LEAN_CLI := $(LEAN_DIR)/carom
 LEAN_M4F_OBJ := $(LIB_SRC:src/%.c=$(LEAN_DIR)/m4f/obj/%.o)
 LEAN_M4F_LIB := $(LEAN_DIR)/m4f/libcarom.a
 LEAN_INCLUDE = -include $(LEAN_HDR)
-# The scenes of lean-check: circles only (no polygon code), boxes, and a
-# 1000-circle gas in static walls (contacts in the events method).
-LEAN_CHECK_SCENES := tools/scenes/cradle.scene tools/scenes/stack.scene tools/scenes/gas.scene
+# The scenes of lean-check: circles only (no polygon code), boxes, a
+# 1000-circle gas in static walls (contacts in the events method), and two
+# small scenes that once broke a lean build's bits (tools/scenes/lean/).
+LEAN_CHECK_SCENES := tools/scenes/cradle.scene tools/scenes/stack.scene tools/scenes/gas.scene \
+	tools/scenes/lean/kinematic-drop.scene tools/scenes/lean/filtered-balls.scene
 # LEAN_M4F=0 leaves out the Cortex-M4F column (lean-check does, for speed).
 LEAN_M4F ?= 1
 LEAN_HAVE_ARM = test "$(LEAN_M4F)" = 1 && command -v $(ARM_CC) >/dev/null 2>&1

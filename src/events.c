@@ -1089,10 +1089,19 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
 
 /* Row slots 0 .. n-1 of w->rows are written: the most an instant wrote is
  * what `carom lean` sizes CAROM_IMPACT_ROWS_MAX to. */
-static void cr_note_rows(carom_world *w, int n)
+/* Is there room for n rows in a simultaneous solve? Asked before each
+ * look at a contact that could join it, and counted whatever the answer:
+ * stats.max_rows_used is the room a solve needed to look at everything
+ * it would with any more, so a build whose CAROM_IMPACT_ROWS_MAX is that
+ * (`carom lean`) takes the same path to the last bit. (Counting only the
+ * rows that joined undercounted: with room for one row, a kinematic
+ * platform's neighbour was not brought to the instant, and a rotation
+ * came out one ulp off.) */
+static int cr_room_for_rows(carom_world *w, int n)
 {
     if (n > w->stats.max_rows_used)
         w->stats.max_rows_used = n;
+    return n <= w->row_cap;
 }
 
 static int cr_island_add_body(carom_world *w, int i, int *n)
@@ -1290,9 +1299,10 @@ static int cr_island_grow(carom_world *w, int *nb, int nr, float t)
                 cr_pair *p = &w->pairs[k];
                 int other = p->a == body ? p->b : p->a;
                 int next = p->a == body ? p->next_a : p->next_b;
-                if (p->mark != w->mark_stamp && p->contact >= 0 && nr < w->row_cap &&
+                if (p->mark != w->mark_stamp && p->contact >= 0 &&
                     (w->contacts[p->contact].flags & CR_CONTACT_SOLVE) &&
-                    (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING)) {
+                    (w->contacts[p->contact].flags & CR_CONTACT_TOUCHING) &&
+                    cr_room_for_rows(w, nr + 1)) {
                     const cr_contact *c = &w->contacts[p->contact];
                     int in = w->mark[other] == w->mark_stamp;
                     if (!in && cr_moving(&w->bodies[other])) {
@@ -1302,7 +1312,6 @@ static int cr_island_grow(carom_world *w, int *nb, int nr, float t)
                     if (cr_gt(cr_contact_approach(w, c), cr_rest_speed(w, c->a, c->b)) &&
                         (in || cr_island_add_body(w, other, nb))) {
                         p->mark = w->mark_stamp;
-                        cr_note_rows(w, nr + 1);
                         if (cr_row_make(w, k, &w->rows[nr])) {
                             ++nr;
                             grown = 1;
@@ -1502,7 +1511,7 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         cr_heap_pop(w);
         if (e.stamp != p->stamp || p->mark == w->mark_stamp)
             continue;
-        if (seeds >= w->row_cap || !cr_island_add_body(w, p->a, &nb) ||
+        if (!cr_room_for_rows(w, seeds + 1) || !cr_island_add_body(w, p->a, &nb) ||
             !cr_island_add_body(w, p->b, &nb)) {
             /* no room: leave it for right after this instant */
             p->toi = t;
@@ -1512,7 +1521,7 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
         p->mark = w->mark_stamp;
         w->rows[seeds++].pair = e.pair;
     }
-    cr_note_rows(w, seeds);
+    (void)cr_room_for_rows(w, seeds);
     /* everyone to the instant, then the rows */
     for (i = 0; i < nb; ++i) {
         cr_sync(&w->bodies[w->island[i]], &w->drift[w->island[i]], t);
