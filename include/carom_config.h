@@ -25,7 +25,13 @@
 
 #ifndef CAROM_ENABLE_FRICTION
 #define CAROM_ENABLE_FRICTION 1 /**< Coulomb friction at contacts; off: all
-                                     contacts are frictionless */
+                                     contacts are frictionless (a body
+                                     definition's friction is kept and
+                                     unused, so a scene measured by
+                                     `carom lean` loads; setting a
+                                     friction > 0 after creation asks for
+                                     what is not there:
+                                     CAROM_ERR_DISABLED) */
 #endif
 
 #ifndef CAROM_ENABLE_FORCES

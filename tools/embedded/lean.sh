@@ -109,6 +109,17 @@ for part in state events trace; do
         exit 1
     fi
 done
+# the measured run is the lean build's own: no warning; one step more is
+# beyond it, and the lean CLI says so
+if grep -q "goes beyond" "$check/lean.err"; then
+    cat "$check/lean.err" >&2
+    die "the lean CLI warned on the run it was measured on"
+fi
+steps=$(sed -n 's/^#define CAROM_LEAN_STEPS \([0-9]*\)L.*/\1/p' "$dir/carom_lean.h")
+[ -n "$steps" ] || die "no CAROM_LEAN_STEPS in $dir/carom_lean.h"
+"$lean_cli" run "$scene" --no-progress --steps $((steps + 1)) > /dev/null 2> "$check/beyond.err" || true
+grep -q "goes beyond" "$check/beyond.err" ||
+    die "the lean CLI did not warn on a run of $((steps + 1)) steps, one past the $steps measured"
 rows=$(($(wc -l < "$check/default.trace") - 1))
 events=$(($(wc -l < "$check/default.events") - 1))
 echo "lean: ok: final state, $events events and $rows trace rows byte-identical to the default build"
