@@ -132,8 +132,12 @@ carom_status carom_world_remove_body(carom_world *w, int id)
     if (w->bodies[s].flags & CR_BODY_SENSOR)
         --w->sensor_count;
     w->bodies[s].flags = 0u;
-    w->info[s].generation = (w->info[s].generation + 1u) &
-                            ((1u << (31 - CAROM_ID_INDEX_BITS)) - 1u);
+    /* the next generation, and a mark above the id's bits that the slot
+     * held a body: an id of it is stale, not unknown, even after the
+     * generation wraps to 0 */
+    w->info[s].generation = ((w->info[s].generation + 1u) &
+                             ((1u << (31 - CAROM_ID_INDEX_BITS)) - 1u)) |
+                            0x80000000u;
     w->bodies[s].sleep_island = -1;
     --w->body_count;
     w->scale_valid = 0;

@@ -457,7 +457,7 @@ carom_status cr_slot_of(const carom_world *w, int id, int *slot)
     if (id < 0 || (int)s >= w->def.max_bodies)
         return CAROM_ERR_BAD_BODY_ID;
     if (!(w->bodies[s].flags & CR_BODY_ALIVE) || cr_body_id(w, (int)s) != id)
-        return (w->bodies[s].flags & CR_BODY_ALIVE) || w->info[s].generation > 0
+        return (w->bodies[s].flags & CR_BODY_ALIVE) || w->info[s].generation != 0u
                    ? CAROM_ERR_STALE_ID
                    : CAROM_ERR_BAD_BODY_ID;
     *slot = (int)s;

@@ -300,6 +300,28 @@ START_TEST(test_removal_frees_the_slot_and_refuses_stale_ids)
 }
 END_TEST
 
+/* A slot reused 2^(31 - CAROM_ID_INDEX_BITS) times wraps its generation
+ * back to 0 (documented): its removed body's id is still stale, never
+ * "no such body", at every count, the wrap included. */
+START_TEST(test_stale_id_stays_stale_when_the_generation_wraps)
+{
+    carom_world_def wd = zero_g(2);
+    tw t = tw_make(&wd);
+    const int wrap = 1 << (31 - CAROM_ID_INDEX_BITS);
+    int k, id = add_ball(&t, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f), first = id;
+    (void)add_ball(&t, 0.5f, 3.0f, 0.0f, 0.0f, 0.0f);
+    for (k = 1; k <= wrap + 1; ++k) {
+        ck_assert_int_eq(carom_world_remove_body(t.w, id), CAROM_OK);
+        ck_assert_msg(carom_world_remove_body(t.w, id) == CAROM_ERR_STALE_ID,
+                      "removal %d: %s", k, carom_status_string(carom_world_remove_body(t.w, id)));
+        id = add_ball(&t, 0.5f, 0.0f, 0.0f, 0.0f, 0.0f);
+        /* the id comes back only when the generation has wrapped */
+        ck_assert_int_eq(id == first, k == wrap);
+    }
+    tw_free(&t);
+}
+END_TEST
+
 /* Removing the ground under a settled (sleeping) stack: the stack wakes and
  * falls freely, and no warm start of the ground's contacts reaches the
  * body that takes its slot. */
@@ -1394,6 +1416,7 @@ Suite *suite_api(void)
     tcase_add_test(tr, test_rotation_pairs_too_short_to_normalize_are_refused);
     tcase_add_test(tr, test_id_of_the_last_slot_stays_stale_after_reuse);
     tcase_add_test(tr, test_removal_frees_the_slot_and_refuses_stale_ids);
+    tcase_add_test(tr, test_stale_id_stays_stale_when_the_generation_wraps);
     tcase_add_test(tr, test_removing_a_support_wakes_and_drops_what_it_held);
     tcase_add_test(tr, test_removal_mid_simulation_leaves_nothing_dangling);
     tcase_add_test(tr, test_removing_a_sleeping_body_or_a_sensor);
