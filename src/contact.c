@@ -162,7 +162,7 @@ carom_status cr_contacts_build(carom_world *w, float dt)
             continue; /* overlaps only (touch.c) */
         if (!cr_collide(&w->info[pr->a].shape, A->x, A->q, &w->info[pr->b].shape,
                         B->x, B->q, cr_pair_reach(w, pr->a, pr->b, dt),
-                        w->scale.face_tol, w->scale.corner, &m))
+                        w->scale.face_tol, &m))
             continue;
         if (w->contact_count >= w->def.max_contacts)
             return CAROM_ERR_CONTACT_CAPACITY;
@@ -222,7 +222,7 @@ int cr_contact_add(carom_world *w, int pair)
     if ((A->flags | B->flags) & CR_BODY_SENSOR)
         return -1;
     if (!cr_collide(&w->info[pr->a].shape, A->x, A->q, &w->info[pr->b].shape,
-                    B->x, B->q, reach, w->scale.face_tol, w->scale.corner, &m))
+                    B->x, B->q, reach, w->scale.face_tol, &m))
         return -1;
     if (w->contact_count >= w->def.max_contacts)
         return -2;
@@ -246,7 +246,7 @@ void cr_contact_remake(carom_world *w, cr_contact *c)
     ++w->contact_edits;
     c->flags &= ~CR_CONTACT_RESTING;
     if (!cr_collide(&w->info[c->a].shape, A->x, A->q, &w->info[c->b].shape,
-                    B->x, B->q, c->reach, w->scale.face_tol, w->scale.corner, &m)) {
+                    B->x, B->q, c->reach, w->scale.face_tol, &m)) {
         c->count = 0;
         c->flags &= ~CR_CONTACT_TOUCHING;
         return;
