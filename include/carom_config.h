@@ -474,6 +474,21 @@
                                           so aligned edges never flip it */
 #endif
 
+#ifndef CAROM_CORNER_SLOPS
+#define CAROM_CORNER_SLOPS 2.0f /**< polygon corners are rounded off by this
+                                     many linear slops for contacts: a
+                                     polygon that overlaps another's face
+                                     only that near one of its ends, and
+                                     dips no deeper below the face that
+                                     meets it there, grazes the corner and
+                                     makes no contact. A body resting one
+                                     slop deep on one of two tiles whose
+                                     tops meet flush slides over the seam
+                                     instead of striking the next tile's
+                                     side (docs/physics.md, "Seams"); 0:
+                                     sharp corners */
+#endif
+
 /* ---- numerical constants (not meant to be tuned per scene) -------------- */
 
 #ifndef CAROM_TOI_MAX_ITERATIONS

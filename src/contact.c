@@ -148,43 +148,155 @@ static void cr_warm_match(cr_contact *c, const cr_warm *wm)
             }
 }
 
+/*
+ * A seam's ghost (docs/physics.md, "Seams"). Manifold m of bodies a and b
+ * has one polygon grazing a corner of the other: it overlaps the face
+ * only within CAROM_CORNER_SLOPS slops of the corner, and dips no deeper
+ * below the face that meets it there (m->graze_n, m->graze_d). Where
+ * another contact of the grazing body, with a third body, holds it on
+ * that same plane (a normal along graze_n, its surface on the plane
+ * within the rounding), the grazing body is carried flush across the
+ * seam, and the graze is a ghost: the contact is not made. Without such a
+ * neighbour it is a real corner (a box bridging a gap on millimetre
+ * bearings, a box driven into a slot a millimetre too low for it, a box
+ * falling past a ledge) and stays. Only contacts made from a full
+ * manifold (no graze) count as the neighbour.
+ */
+#define CR_GHOST_PARALLEL 0.9999f /* cos of the largest angle between the
+                                     planes (0.8 degree) */
+
+int cr_ghost(const carom_world *w, int a, int b, const cr_manifold *m)
+{
+    int q = m->graze == 1 ? a : b, other = m->graze == 1 ? b : a, k;
+    /* only seams of bodies that do not move (static and kinematic tiles):
+     * in a pile, dynamic bodies' faces line up by chance, and their
+     * grazes are left as they were */
+    if (!m->graze || w->bodies[other].type == CAROM_BODY_DYNAMIC)
+        return 0;
+    for (k = w->pair_head[q]; k >= 0;) {
+        const cr_pair *p = &w->pairs[k];
+        int r = p->a == q ? p->b : p->a, next = p->a == q ? p->next_a : p->next_b;
+        if (r != other && p->contact >= 0 && w->bodies[r].type != CAROM_BODY_DYNAMIC &&
+            !(w->contacts[p->contact].flags & CR_CONTACT_GRAZE)) {
+            const cr_contact *c = &w->contacts[p->contact];
+            /* the neighbour's normal, from it towards q */
+            cr_v2 n = c->b == q ? c->n : cr_vneg(c->n);
+            if (cr_ge(cr_vdot(n, m->graze_n), CR_GHOST_PARALLEL)) {
+                int j;
+                for (j = 0; j < c->count; ++j) {
+                    const cr_contact_point *cp = &c->pts[j];
+                    /* the neighbour's surface point at the step's start:
+                     * the contact point (midway) less half the gap */
+                    float sep = cr_add(cp->base_sep, cr_vdot(c->n, cr_vsub(cp->rb, cp->ra)));
+                    cr_v2 x = cr_vmadd(cr_vadd(w->backup[c->a].x, cp->ra), cr_mul(-0.5f, sep), n);
+                    if (!cr_gt(cr_abs(cr_sub(cr_vdot(m->graze_n, x), m->graze_d)), w->scale.corner))
+                        return 1;
+                }
+            }
+        }
+        k = next;
+    }
+    return 0;
+}
+
+/* Make contact c of pair i from manifold m (the step's start). */
+static void cr_contact_make(carom_world *w, cr_contact *c, int i, const cr_manifold *m,
+                            float dt, const cr_warm *wm)
+{
+    const cr_pair *pr = &w->pairs[i];
+    c->a = pr->a;
+    c->b = pr->b;
+    c->pair = i;
+    c->flags = m->graze ? CR_CONTACT_GRAZE : 0u;
+    c->reach = cr_pair_reach(w, pr->a, pr->b, dt);
+    cr_contact_from_manifold(w, c, m);
+    if (wm) {
+        int k;
+        cr_warm_match(c, wm);
+        for (k = 0; k < c->count; ++k)
+            if (cr_gt(c->pts[k].pn, 0.0f) && (c->flags & CR_CONTACT_TOUCHING))
+                c->flags |= CR_CONTACT_RESTING;
+    }
+}
+
+/* Last step's impulses of pair (a, b), or NULL (binary search). */
+static const cr_warm *cr_warm_of(const carom_world *w, int a, int b)
+{
+    int lo = 0, hi = w->warm_count;
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        const cr_warm *x = &w->warm[mid];
+        if (x->a < a || (x->a == a && x->b < b))
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < w->warm_count && w->warm[lo].a == a && w->warm[lo].b == b ? &w->warm[lo] : 0;
+}
+
+#define CR_PAIR_GRAZING (-2) /* cr_contacts_build: a graze, decided last */
+
 carom_status cr_contacts_build(carom_world *w, float dt)
 {
-    int i, j = 0;
+    int i, j = 0, grazes = 0;
     w->contact_count = 0;
     for (i = 0; i < w->pair_count; ++i) {
         cr_pair *pr = &w->pairs[i];
         const cr_body *A = &w->bodies[pr->a], *B = &w->bodies[pr->b];
         cr_manifold m;
-        cr_contact *c;
+        const cr_warm *wm = 0;
         pr->contact = -1;
         if ((A->flags | B->flags) & CR_BODY_SENSOR)
             continue; /* overlaps only (touch.c) */
         if (!cr_collide(&w->info[pr->a].shape, A->x, A->q, &w->info[pr->b].shape,
                         B->x, B->q, cr_pair_reach(w, pr->a, pr->b, dt),
-                        w->scale.face_tol, &m))
+                        w->scale.face_tol, w->scale.corner, &m))
+            continue;
+        if (m.graze) {
+            /* whether a neighbour carries it across needs every other
+             * contact: after this loop */
+            pr->contact = CR_PAIR_GRAZING;
+            ++grazes;
+            continue;
+        }
+        if (w->contact_count >= w->def.max_contacts)
+            return CAROM_ERR_CONTACT_CAPACITY;
+        /* warm start: last step's contacts are sorted like the pairs */
+        while (j < w->warm_count &&
+               (w->warm[j].a < pr->a || (w->warm[j].a == pr->a && w->warm[j].b < pr->b)))
+            ++j;
+        if (j < w->warm_count && w->warm[j].a == pr->a && w->warm[j].b == pr->b)
+            wm = &w->warm[j];
+        cr_contact_make(w, &w->contacts[w->contact_count], i, &m, dt, wm);
+        pr->contact = w->contact_count++;
+    }
+    /* grazes: a ghost is not made; a real corner is, in its place in the
+     * pairs' order (rare: the later contacts move up one) */
+    for (i = 0; i < w->pair_count && grazes > 0; ++i) {
+        cr_pair *pr = &w->pairs[i];
+        const cr_body *A = &w->bodies[pr->a], *B = &w->bodies[pr->b];
+        cr_manifold m;
+        int at, k;
+        if (pr->contact != CR_PAIR_GRAZING)
+            continue;
+        --grazes;
+        pr->contact = -1;
+        (void)cr_collide(&w->info[pr->a].shape, A->x, A->q, &w->info[pr->b].shape, B->x, B->q,
+                         cr_pair_reach(w, pr->a, pr->b, dt), w->scale.face_tol,
+                         w->scale.corner, &m);
+        if (cr_ghost(w, pr->a, pr->b, &m))
             continue;
         if (w->contact_count >= w->def.max_contacts)
             return CAROM_ERR_CONTACT_CAPACITY;
-        c = &w->contacts[w->contact_count];
-        c->a = pr->a;
-        c->b = pr->b;
-        c->pair = i;
-        c->flags = 0u;
-        c->reach = cr_pair_reach(w, pr->a, pr->b, dt);
-        cr_contact_from_manifold(w, c, &m);
-        /* warm start: last step's contacts are sorted like the pairs */
-        while (j < w->warm_count &&
-               (w->warm[j].a < c->a || (w->warm[j].a == c->a && w->warm[j].b < c->b)))
-            ++j;
-        if (j < w->warm_count && w->warm[j].a == c->a && w->warm[j].b == c->b) {
-            int k;
-            cr_warm_match(c, &w->warm[j]);
-            for (k = 0; k < c->count; ++k)
-                if (cr_gt(c->pts[k].pn, 0.0f) && (c->flags & CR_CONTACT_TOUCHING))
-                    c->flags |= CR_CONTACT_RESTING;
+        for (at = w->contact_count; at > 0 && w->contacts[at - 1].pair > i; --at)
+            ;
+        for (k = w->contact_count; k > at; --k) {
+            w->contacts[k] = w->contacts[k - 1];
+            w->pairs[w->contacts[k].pair].contact = k;
         }
-        pr->contact = w->contact_count++;
+        cr_contact_make(w, &w->contacts[at], i, &m, dt, cr_warm_of(w, pr->a, pr->b));
+        pr->contact = at;
+        ++w->contact_count;
     }
     return CAROM_OK;
 }
@@ -222,7 +334,8 @@ int cr_contact_add(carom_world *w, int pair)
     if ((A->flags | B->flags) & CR_BODY_SENSOR)
         return -1;
     if (!cr_collide(&w->info[pr->a].shape, A->x, A->q, &w->info[pr->b].shape,
-                    B->x, B->q, reach, w->scale.face_tol, &m))
+                    B->x, B->q, reach, w->scale.face_tol, w->scale.corner, &m) ||
+        cr_ghost(w, pr->a, pr->b, &m))
         return -1;
     if (w->contact_count >= w->def.max_contacts)
         return -2;
@@ -231,7 +344,7 @@ int cr_contact_add(carom_world *w, int pair)
     c->a = pr->a;
     c->b = pr->b;
     c->pair = pair;
-    c->flags = CR_CONTACT_NEW;
+    c->flags = CR_CONTACT_NEW | (m.graze ? CR_CONTACT_GRAZE : 0u);
     c->reach = reach;
     cr_contact_fill(w, c, pr, &m);
     pr->contact = w->contact_count++;
@@ -246,11 +359,13 @@ void cr_contact_remake(carom_world *w, cr_contact *c)
     ++w->contact_edits;
     c->flags &= ~CR_CONTACT_RESTING;
     if (!cr_collide(&w->info[c->a].shape, A->x, A->q, &w->info[c->b].shape,
-                    B->x, B->q, c->reach, w->scale.face_tol, &m)) {
+                    B->x, B->q, c->reach, w->scale.face_tol, w->scale.corner, &m) ||
+        cr_ghost(w, c->a, c->b, &m)) {
         c->count = 0;
         c->flags &= ~CR_CONTACT_TOUCHING;
         return;
     }
+    c->flags = (unsigned short)((c->flags & ~CR_CONTACT_GRAZE) | (m.graze ? CR_CONTACT_GRAZE : 0u));
     cr_contact_fill(w, c, pr, &m);
 }
 

@@ -33,6 +33,15 @@ typedef struct cr_manifold {
     cr_v2 n;        /* unit normal from body a towards body b */
     int count;      /* 0..CR_MANIFOLD_POINTS */
     cr_manifold_point pts[CR_MANIFOLD_POINTS];
+    /* a polygon grazing a corner of the other (cr_polygons): 0 no; 1 body
+     * a grazes body b's corner, 2 body b grazes a's. Then the face that
+     * meets the contact's face at that corner: its outward unit normal
+     * and its plane (dot(graze_n, x) = graze_d), world frame. Such a
+     * contact is a seam's ghost if a flush neighbour carries the grazing
+     * body across (contact.c, cr_ghost) */
+    int graze;
+    cr_v2 graze_n;
+    float graze_d;
 } cr_manifold;
 
 /* One point of a contact constraint. */
@@ -78,6 +87,10 @@ typedef struct cr_contact_point {
                                 in a jam of unlike densities with a body of
                                 unlike mass (cr_mark_mixed); soft while
                                 resting */
+#define CR_CONTACT_GRAZE 1024u /* made from a manifold of a polygon grazing a
+                                  corner, with no flush neighbour carrying
+                                  it across (contact.c, cr_ghost): not one
+                                  that shows a seam is a ghost */
 
 typedef struct cr_contact {
     int a, b;          /* body slots, a < b */
@@ -154,6 +167,11 @@ float cr_pair_reach(const carom_world *w, int a, int b, float h);
  * their surfaces can close in per second (cr_pair_reach), and the scale
  * of the rounding in their approach (cr_solver_classify). */
 float cr_pair_speed(const carom_world *w, int a, int b);
+
+/* Is manifold m of bodies a and b (cr_collide) a seam's ghost: a polygon
+ * grazing a corner of the other while a flush neighbour carries it
+ * across? Then no contact or impact row is made of it (contact.c). */
+int cr_ghost(const carom_world *w, int a, int b, const cr_manifold *m);
 
 /* Constraint data of contact c (a, b set) from manifold m at the bodies'
  * current poses; impulses start at zero. */

@@ -306,7 +306,8 @@ static int cr_out_far_side(const cr_shape *sd, cr_v2 x, cr_rot q, const cr_shape
     cr_manifold end;
     if (!cr_lt(sep1, cr_neg(slop)))
         return 0; /* (the solver's own overlap) */
-    if (!cr_collide(ss, S->x, S->q, sd, x, q, 0.0f, face_tol, &end))
+    if (!cr_collide(ss, S->x, S->q, sd, x, q, 0.0f, face_tol,
+                    cr_mul(CAROM_CORNER_SLOPS, slop), &end))
         return 0;
     return cr_lt(cr_vdot(end.n, n), CR_FAR_SIDE_DOT);
 }
@@ -678,7 +679,7 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     sep0 = cr_separation(ss, xs, qs, sd, xt, qt);
     if (!cr_finite(sep0) ||
         !cr_collide(ss, xs, qs, sd, xt, qt, cr_add(cr_max(sep0, 0.0f), cr_add(tol, slop)),
-                    w->scale.face_tol, &m))
+                    w->scale.face_tol, w->scale.corner, &m))
         return 0;
 #if CAROM_ENABLE_KINEMATIC
     if (moving) {
@@ -750,7 +751,7 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
     late.count = 0;
     if (touching && !moving &&
         cr_collide(ss, S->x, S->q, sd, b1->x, b1->q, cr_add(tol, slop), w->scale.face_tol,
-                   &late)) {
+                   w->scale.corner, &late)) {
         int k;
         for (k = 0; k < late.count; ++k)
             late.pts[k].p = cr_vadd(xt, cr_rotate(qt, cr_inv_rotate(b1->q,

@@ -1014,7 +1014,8 @@ static int cr_row_make(carom_world *w, int k, cr_impact_row *r)
     int j;
     /* touching within the slop: the simultaneous rows */
     if (!cr_collide(&ia->shape, A->x, A->q, &ib->shape, B->x, B->q, w->scale.slop,
-                    w->scale.face_tol, &m))
+                    w->scale.face_tol, w->scale.corner, &m) ||
+        cr_ghost(w, p->a, p->b, &m))
         return 0;
     r->a = p->a;
     r->b = p->b;

@@ -31,7 +31,7 @@
 #define CR_ID(a, b) (((unsigned)(a) << 8) | (unsigned)(b))
 
 typedef int (*cr_collide_fn)(const cr_shape *A, const cr_shape *B, cr_v2 p,
-                             cr_rot q, float reach, float face_tol,
+                             cr_rot q, float reach, float face_tol, float corner,
                              cr_manifold *m);
 
 static cr_v2 cr_midpoint(cr_v2 p, cr_v2 q)
@@ -49,7 +49,7 @@ static cr_rot cr_rot_relative(cr_rot qa, cr_rot qb)
 /* ---- circle - circle (in A's frame: A at the origin) ---------------------- */
 
 static int cr_circles(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
-                      float reach, float face_tol, cr_manifold *m)
+                      float reach, float face_tol, float corner, cr_manifold *m)
 {
     float r = cr_add(A->radius, B->radius);
     float far = cr_add(r, reach);
@@ -57,6 +57,7 @@ static int cr_circles(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
     cr_v2 n;
     (void)q;
     (void)face_tol;
+    (void)corner;
     if (cr_gt(dist2, cr_mul(far, far)))
         return 0;
     dist = cr_sqrt(dist2);
@@ -144,22 +145,26 @@ static int cr_polygon_circle_at(const cr_shape *P, cr_v2 c, float r,
 
 /* A polygon, B circle at p (A's frame). */
 static int cr_polygon_circle(const cr_shape *A, const cr_shape *B, cr_v2 p,
-                             cr_rot q, float reach, float face_tol,
+                             cr_rot q, float reach, float face_tol, float corner,
                              cr_manifold *m)
 {
     (void)q;
     (void)face_tol;
+    (void)corner; /* a disc's contact with a corner is kept: where it only
+                     grazes (rolling flush over a seam) is not told by the
+                     pose from where it falls onto the corner */
     return cr_polygon_circle_at(A, p, B->radius, reach, m, 0);
 }
 
 /* A circle, B polygon at (p, q) in A's frame: solved in B's frame. */
 static int cr_circle_polygon(const cr_shape *A, const cr_shape *B, cr_v2 p,
-                             cr_rot q, float reach, float face_tol,
+                             cr_rot q, float reach, float face_tol, float corner,
                              cr_manifold *m)
 {
     int k, hit;
     cr_v2 c = cr_inv_rotate(q, cr_vneg(p)); /* A's centre in B's frame */
     (void)face_tol;
+    (void)corner;
     hit = cr_polygon_circle_at(B, c, A->radius, reach, m, 1);
     if (!hit)
         return 0;
@@ -215,8 +220,36 @@ static float cr_lateral_excess(float u, float upper)
     return cr_gt(u, upper) ? cr_sub(u, upper) : 0.0f;
 }
 
+/* Corners are rounded off by `corner` (CAROM_CORNER_SLOPS linear slops)
+ * for a face's contacts: where the incident polygon overlaps the
+ * reference face only within `corner` of one of its ends, and dips below
+ * the plane of the face that meets the reference face there by no more
+ * than `corner`, the two only graze a corner, and the face makes no
+ * contact. A body resting (one slop deep) on one of two tiles whose tops
+ * meet flush then slides over the seam instead of striking the next
+ * tile's side face (a "ghost collision"); Box2D 2.4 gets the same from
+ * its polygons' rounded skin. */
+static int cr_sliver(const cr_v2 *rv, const cr_v2 *rn, int rc, int ref, const cr_v2 *iv,
+                     int ic, float lower2, float upper2, float upper1, float corner)
+{
+    float s;
+    int adj, j;
+    if (!cr_gt(corner, 0.0f))
+        return -1;
+    if (!cr_lt(lower2, cr_sub(upper1, corner)))
+        adj = (ref + 1) % rc; /* only within `corner` of the far end, v12 */
+    else if (!cr_gt(upper2, corner))
+        adj = (ref + rc - 1) % rc; /* only within it of the near end, v11 */
+    else
+        return -1;
+    s = cr_vdot(rn[adj], cr_vsub(iv[0], rv[adj]));
+    for (j = 1; j < ic; ++j)
+        s = cr_min(s, cr_vdot(rn[adj], cr_vsub(iv[j], rv[adj])));
+    return !cr_gt(s, 0.0f) && !cr_lt(s, cr_neg(corner)) ? adj : -1;
+}
+
 static int cr_polygons(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
-                       float reach, float face_tol, cr_manifold *m)
+                       float reach, float face_tol, float corner, cr_manifold *m)
 {
     cr_v2 bv[CAROM_MAX_POLYGON_VERTICES], bn[CAROM_MAX_POLYGON_VERTICES];
     cr_v2 av[CAROM_MAX_POLYGON_VERTICES]; /* A's vertices in B's frame */
@@ -284,6 +317,13 @@ static int cr_polygons(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
         seps[0] = cr_min(d21, d22);
         k = 1;
     } else {
+        int adj = cr_sliver(rv, rn, rc, ref, iv, ic, lower2, upper2, upper1, corner);
+        if (adj >= 0) {
+            /* a graze of the reference polygon's corner (A's frame here) */
+            m->graze = flip ? 1 : 2;
+            m->graze_n = rn[adj];
+            m->graze_d = cr_vdot(rn[adj], rv[adj]);
+        }
         /* an end cut by a side plane lies on that plane exactly (at the
          * reference vertex, moved along the normal to the incident face),
          * so a symmetric pair gets symmetric points to the last bit and a
@@ -350,7 +390,7 @@ static const cr_collide_fn cr_collide_table[2][2] = {
 };
 
 int cr_collide(const cr_shape *A, cr_v2 xa, cr_rot qa, const cr_shape *B,
-               cr_v2 xb, cr_rot qb, float reach, float face_tol,
+               cr_v2 xb, cr_rot qb, float reach, float face_tol, float corner,
                cr_manifold *m)
 {
     cr_collide_fn fn = cr_collide_table[A->kind][B->kind];
@@ -358,17 +398,22 @@ int cr_collide(const cr_shape *A, cr_v2 xa, cr_rot qa, const cr_shape *B,
     cr_rot q;
     int k, hit;
     m->count = 0;
+    m->graze = 0;
     if (!fn)
         return 0;
     /* B relative to A, in A's frame */
     p = cr_inv_rotate(qa, cr_vsub(xb, xa));
     q = cr_rot_relative(qa, qb);
-    hit = fn(A, B, p, q, reach, face_tol, m);
+    hit = fn(A, B, p, q, reach, face_tol, corner, m);
     if (!hit)
         return 0;
     m->n = cr_rotate(qa, m->n);
     for (k = 0; k < m->count; ++k)
         m->pts[k].p = cr_vadd(xa, cr_rotate(qa, m->pts[k].p));
+    if (m->graze) {
+        m->graze_n = cr_rotate(qa, m->graze_n);
+        m->graze_d = cr_add(m->graze_d, cr_vdot(m->graze_n, xa));
+    }
     return m->count;
 }
 

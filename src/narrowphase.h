@@ -18,7 +18,7 @@
  * not on where in the world the pair sits.
  */
 int cr_collide(const cr_shape *A, cr_v2 xa, cr_rot qa, const cr_shape *B,
-               cr_v2 xb, cr_rot qb, float reach, float face_tol,
+               cr_v2 xb, cr_rot qb, float reach, float face_tol, float corner,
                cr_manifold *m);
 
 /*

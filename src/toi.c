@@ -400,7 +400,7 @@ float cr_approach_speed(const cr_mover *A, const cr_mover *B, float t,
     *scale = cr_add(cr_add(cr_vlen(va), cr_vlen(vb)),
                     cr_add(cr_mul(cr_abs(wa), A->s->extent),
                            cr_mul(cr_abs(wb), B->s->extent)));
-    if (!cr_collide(A->s, xa, qa, B->s, xb, qb, reach, 0.0f, &m))
+    if (!cr_collide(A->s, xa, qa, B->s, xb, qb, reach, 0.0f, 0.0f, &m))
         return 0.0f;
     for (k = 0; k < m.count; ++k) {
         cr_v2 ra = cr_vsub(m.pts[k].p, xa), rb = cr_vsub(m.pts[k].p, xb);

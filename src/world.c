@@ -565,6 +565,7 @@ void cr_scale_compute(const carom_world *w, cr_scale *s)
     s->spec = cr_mul(CAROM_SPECULATIVE_SLOPS, s->slop);
     s->push = cr_mul(CAROM_PUSH_SPEED_PER_LENGTH, s->length);
     s->face_tol = cr_mul(CAROM_FACE_TOL_PER_SLOP, s->slop);
+    s->corner = cr_mul(CAROM_CORNER_SLOPS, s->slop);
     s->sleep_speed = cr_mul(CAROM_SLEEP_SPEED_PER_LENGTH, s->length);
     s->substeps = cr_substeps_for(w, s->length);
 }

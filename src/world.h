@@ -102,6 +102,7 @@ typedef struct cr_scale {
     float spec;       /* speculative distance, m */
     float push;       /* largest push-out speed, m/s */
     float face_tol;   /* polygon reference face tolerance, m */
+    float corner;     /* polygon corners rounded off for contacts, m */
     float sleep_speed;/* m/s */
     int substeps;     /* of a step: def.substeps, or more under gravity */
 } cr_scale;

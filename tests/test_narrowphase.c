@@ -39,7 +39,7 @@ static tshape make_box(float x, float y, float hx, float hy, float angle)
 static int collide(const tshape *a, const tshape *b, float margin, cr_manifold *m)
 {
     return cr_collide(&a->info.shape, a->b.x, a->b.q, &b->info.shape, b->b.x,
-                      b->b.q, margin, 0.0f, m) > 0;
+                      b->b.q, margin, 0.0f, 0.0f, m) > 0;
 }
 
 START_TEST(test_circle_circle_overlap_normal_and_midpoint)
@@ -408,10 +408,75 @@ START_TEST(test_corner_hanging_past_a_face_end_counts_its_true_distance)
     ck_assert(oy > ly && u > 0.0 && u < 1.0);
     ck_assert(dist > 0.02 && dist < 0.04);
     ck_assert(cr_collide(&ground.info.shape, ground.b.x, ground.b.q, &tilt.info.shape,
-                         tilt.b.x, tilt.b.q, (float)(dist - 0.005), 0.05f, &m) == 0);
+                         tilt.b.x, tilt.b.q, (float)(dist - 0.005), 0.05f, 0.0f, &m) == 0);
     ck_assert(cr_collide(&ground.info.shape, ground.b.x, ground.b.q, &tilt.info.shape,
-                         tilt.b.x, tilt.b.q, (float)(dist + 0.005), 0.05f, &m) > 0);
+                         tilt.b.x, tilt.b.q, (float)(dist + 0.005), 0.05f, 0.0f, &m) > 0);
     ck_assert(m.pts[0].sep <= dist + 0.005);
+}
+END_TEST
+
+/*
+ * A unit box b sliding right at height -d (one slop deep, as a resting
+ * body sits in the tile under it) towards tile t, whose top is flush at
+ * y = 0 and whose left face is at x = 1; the box's right face is at
+ * x = 1 - g. With corners rounded off by `corner` = 0.002 > d = 0.001 the
+ * box only grazes the tile's corner while it approaches (g > 0) or has
+ * crossed the seam by less than the corner (-0.002 < g): the manifold is
+ * the face's as ever, marked as a graze of the box (body b) with the plane
+ * of the tile's face that meets the contact's face at that corner: the
+ * top (normal (0, 1), y = 0) while the side face makes the contact, the
+ * side (normal (-1, 0), x = 1) once the top does. Whether it is a seam's
+ * ghost is the world's to tell (a flush neighbour carrying the box). Past
+ * the corner, the tile's top face holds it with no graze. A real step,
+ * d = 0.005 > corner, is no graze, nor is anything with corner 0.
+ */
+START_TEST(test_box_grazes_a_flush_seam_but_meets_a_step)
+{
+    static const double gaps[4] = {0.01, 0.0005, -0.0015, -0.01};
+    const float reach = 0.05f, face_tol = 1e-4f, corner = 0.002f;
+    int i;
+    for (i = 0; i < 4; ++i) {
+        double g = gaps[i], d = 0.001;
+        tshape tile = make_box(2.0f, -0.5f, 1.0f, 0.5f, 0.0f);
+        tshape box = make_box((float)(0.5 - g), (float)(0.5 - d), 0.5f, 0.5f, 0.0f);
+        cr_manifold m;
+        int n = cr_collide(&tile.info.shape, tile.b.x, tile.b.q, &box.info.shape, box.b.x,
+                           box.b.q, reach, face_tol, corner, &m);
+        ck_assert_int_ge(n, 1);
+        if (g > 0.0) {
+            ck_assert_int_eq(m.graze, 2);
+            ck_assert(m.n.x == -1.0f && m.n.y == 0.0f);
+            ck_assert_close(m.pts[0].sep, g, 1e-6);
+            ck_assert(m.graze_n.x == 0.0f && m.graze_n.y == 1.0f);
+            ck_assert_close(m.graze_d, 0.0, 1e-7);
+        } else if (g > -0.002) {
+            ck_assert_int_eq(m.graze, 2);
+            ck_assert(m.n.x == 0.0f && m.n.y == 1.0f);
+            ck_assert(m.graze_n.x == -1.0f && m.graze_n.y == 0.0f);
+            ck_assert_close(m.graze_d, -1.0, 1e-7);
+        } else {
+            ck_assert_int_eq(m.graze, 0);
+            ck_assert(m.n.x == 0.0f && m.n.y == 1.0f);
+            ck_assert_close(m.pts[0].sep, -d, 1e-6);
+        }
+        /* sharp corners: no graze */
+        n = cr_collide(&tile.info.shape, tile.b.x, tile.b.q, &box.info.shape, box.b.x, box.b.q,
+                       reach, face_tol, 0.0f, &m);
+        ck_assert_int_ge(n, 1);
+        ck_assert_int_eq(m.graze, 0);
+    }
+    {
+        /* a step 5 mm high: met, no graze */
+        tshape tile = make_box(2.0f, -0.5f, 1.0f, 0.5f, 0.0f);
+        tshape box = make_box(0.5f - 0.0005f, 0.5f - 0.005f, 0.5f, 0.5f, 0.0f);
+        cr_manifold m;
+        ck_assert_int_ge(cr_collide(&tile.info.shape, tile.b.x, tile.b.q, &box.info.shape,
+                                    box.b.x, box.b.q, reach, face_tol, corner, &m),
+                         1);
+        ck_assert_int_eq(m.graze, 0);
+        ck_assert(m.n.x == -1.0f && m.n.y == 0.0f);
+        ck_assert_close(m.pts[0].sep, 0.0005, 1e-6);
+    }
 }
 END_TEST
 
@@ -438,8 +503,8 @@ START_TEST(test_corner_to_corner_point_lies_between_the_corners)
                 d.position.x = (float)(sx * (1.5 + gx));
                 d.position.y = (float)(sy * (1.5 + gy));
                 ck_assert_int_eq(cr_body_build(&d, &sb, &si), CAROM_OK);
-                hit = order ? cr_collide(&si.shape, sb.x, sb.q, &bi.shape, bb.x, bb.q, 0.3f, 0.0f, &m)
-                            : cr_collide(&bi.shape, bb.x, bb.q, &si.shape, sb.x, sb.q, 0.3f, 0.0f, &m);
+                hit = order ? cr_collide(&si.shape, sb.x, sb.q, &bi.shape, bb.x, bb.q, 0.3f, 0.0f, 0.0f, &m)
+                            : cr_collide(&bi.shape, bb.x, bb.q, &si.shape, sb.x, sb.q, 0.3f, 0.0f, 0.0f, &m);
                 ck_assert_int_eq(hit, 1);
                 /* the big box's corner is at (sx, sy), the small one's at
                  * (sx (1 + gx), sy (1 + gy)) */
@@ -478,6 +543,7 @@ Suite *suite_narrowphase(void)
     tcase_add_test(tc, test_circle_centre_on_a_polygon_vertex_has_a_unit_normal);
     tcase_add_test(tc, test_boxes_corner_to_corner_give_one_point_at_the_axis_gap);
     tcase_add_test(tc, test_corner_hanging_past_a_face_end_counts_its_true_distance);
+    tcase_add_test(tc, test_box_grazes_a_flush_seam_but_meets_a_step);
     suite_add_tcase(s, tc);
     return s;
 }
