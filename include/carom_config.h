@@ -475,18 +475,19 @@
 #endif
 
 #ifndef CAROM_CORNER_SLOPS
-#define CAROM_CORNER_SLOPS 2.0f /**< polygon corners are rounded off by this
-                                     many linear slops for contacts: a
-                                     polygon that overlaps another's face
-                                     only that near one of its ends, and
-                                     dips no deeper below the face that
-                                     meets it there, grazes the corner and
-                                     makes no contact. A body resting one
-                                     slop deep on one of two tiles whose
-                                     tops meet flush slides over the seam
+#define CAROM_CORNER_SLOPS 2.0f /**< seams: a polygon overlapping a static
+                                     or kinematic body's face only this
+                                     many linear slops near one end, and
+                                     dipping no deeper below the face that
+                                     meets it there, grazes the corner;
+                                     where another contact with a static
+                                     or kinematic body holds it on that
+                                     face's plane (tiles whose tops meet
+                                     flush), the graze makes no contact,
+                                     so a body slides over the seam
                                      instead of striking the next tile's
                                      side (docs/physics.md, "Seams"); 0:
-                                     sharp corners */
+                                     every graze makes its contact */
 #endif
 
 /* ---- numerical constants (not meant to be tuned per scene) -------------- */

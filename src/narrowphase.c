@@ -220,15 +220,12 @@ static float cr_lateral_excess(float u, float upper)
     return cr_gt(u, upper) ? cr_sub(u, upper) : 0.0f;
 }
 
-/* Corners are rounded off by `corner` (CAROM_CORNER_SLOPS linear slops)
- * for a face's contacts: where the incident polygon overlaps the
- * reference face only within `corner` of one of its ends, and dips below
- * the plane of the face that meets the reference face there by no more
- * than `corner`, the two only graze a corner, and the face makes no
- * contact. A body resting (one slop deep) on one of two tiles whose tops
- * meet flush then slides over the seam instead of striking the next
- * tile's side face (a "ghost collision"); Box2D 2.4 gets the same from
- * its polygons' rounded skin. */
+/* A graze (docs/physics.md, "Seams"): the incident polygon overlaps the
+ * reference face only within `corner` of one of its ends, and dips no
+ * deeper than `corner` below the plane of the face that meets the
+ * reference face there. Returns that face, or -1. The manifold is made as
+ * ever and marked; whether a graze is a seam's ghost (a flush neighbour
+ * carries the body across) is for the world to tell (contact.c). */
 static int cr_sliver(const cr_v2 *rv, const cr_v2 *rn, int rc, int ref, const cr_v2 *iv,
                      int ic, float lower2, float upper2, float upper1, float corner)
 {
