@@ -476,13 +476,13 @@
 
 #ifndef CAROM_CORNER_SLOPS
 #define CAROM_CORNER_SLOPS 2.0f /**< seams: a polygon overlapping a static
-                                     or kinematic body's face only this
-                                     many linear slops near one end, and
-                                     dipping no deeper below the face that
-                                     meets it there, grazes the corner;
-                                     where another contact with a static
-                                     or kinematic body holds it on that
-                                     face's plane (tiles whose tops meet
+                                     body's face only this many linear
+                                     slops near one end, and dipping no
+                                     deeper below the face that meets it
+                                     there, grazes the corner; where
+                                     another contact with a static body
+                                     holds it on that face's plane
+                                     (static tiles whose tops meet
                                      flush), the graze makes no contact,
                                      so a body slides over the seam
                                      instead of striking the next tile's

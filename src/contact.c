@@ -168,15 +168,17 @@ static void cr_warm_match(cr_contact *c, const cr_warm *wm)
 int cr_ghost(const carom_world *w, int a, int b, const cr_manifold *m)
 {
     int q = m->graze == 1 ? a : b, other = m->graze == 1 ? b : a, k;
-    /* only seams of bodies that do not move (static and kinematic tiles):
-     * in a pile, dynamic bodies' faces line up by chance, and their
-     * grazes are left as they were */
-    if (!m->graze || w->bodies[other].type == CAROM_BODY_DYNAMIC)
+    /* only seams of static tiles: in a pile, dynamic bodies' faces line
+     * up by chance, and their grazes are left as they were; a kinematic
+     * tile flush at the step's start can be a step away by the time the
+     * body reaches the corner (a platform passing a ledge: the discrete
+     * method let a box through the ledge's side) */
+    if (!m->graze || w->bodies[other].type != CAROM_BODY_STATIC)
         return 0;
     for (k = w->pair_head[q]; k >= 0;) {
         const cr_pair *p = &w->pairs[k];
         int r = p->a == q ? p->b : p->a, next = p->a == q ? p->next_a : p->next_b;
-        if (r != other && p->contact >= 0 && w->bodies[r].type != CAROM_BODY_DYNAMIC &&
+        if (r != other && p->contact >= 0 && w->bodies[r].type == CAROM_BODY_STATIC &&
             !(w->contacts[p->contact].flags & CR_CONTACT_GRAZE)) {
             const cr_contact *c = &w->contacts[p->contact];
             /* the neighbour's normal, from it towards q */
