@@ -192,6 +192,15 @@ static int cr_turns_fast(const carom_world *w, const cr_body *b)
            cr_gt(cr_mul(cr_abs(b->w), w->def.dt), CR_SOLVER_MAX_TURN);
 }
 
+/* The approach above which contact c is an impact, not the solver's: the
+ * event search's bound (cr_impact_speed in events.c), the rest speed and
+ * the pair's speed times CR_IMPACT_REL_TOL, which it calls rounding. */
+static float cr_solver_bound(const carom_world *w, const cr_contact *c)
+{
+    return cr_add(cr_rest_speed(w, c->a, c->b),
+                  cr_mul(CR_IMPACT_REL_TOL, cr_pair_speed(w, c->a, c->b)));
+}
+
 /*
  * After the impacts of a substep (events methods): a contact the solver
  * took at the substep's start, not closing then, whose body an impact
@@ -217,9 +226,7 @@ void cr_solver_release_struck(carom_world *w)
             continue;
         for (k = 0; k < c->count && apart; ++k)
             apart = cr_gt(cr_current_sep(c, &c->pts[k], sa, sb), 0.0f);
-        if (apart && cr_gt(cr_contact_approach(w, c),
-                           cr_add(cr_rest_speed(w, c->a, c->b),
-                                  cr_mul(CR_IMPACT_REL_TOL, cr_pair_speed(w, c->a, c->b)))))
+        if (apart && cr_gt(cr_contact_approach(w, c), cr_solver_bound(w, c)))
             c->flags &= ~CR_CONTACT_SOLVE;
     }
 }
@@ -245,8 +252,7 @@ int cr_solver_classify(carom_world *w, int events)
              * at 10 m/s, were left here to the impacts and there to the
              * solver, after this step's solve: neither, for ever, and
              * they sank into each other */
-            float bound = cr_add(cr_rest_speed(w, c->a, c->b),
-                                 cr_mul(CR_IMPACT_REL_TOL, cr_pair_speed(w, c->a, c->b)));
+            float bound = cr_solver_bound(w, c);
             /* and a pair whose touching points all leave faster is
              * parting, not resting: the search follows it past the
              * touch to its next impact (two boxes that bounced apart at
