@@ -116,10 +116,18 @@ static int cr_moves(const cr_body *b)
     return b->type != CAROM_BODY_STATIC;
 }
 
+/* The sweeps' pass of contact c: 0 between dynamic bodies, 1 with a
+ * kinematic body, 2 with a static one. Static contacts come last, so
+ * they have the last word: a body a kinematic piston crushes against a
+ * static wall stays at the wall's face, where the piston, solved last,
+ * pushed it into the wall at its own speed until the far face pushed it
+ * out (walls thicker than the body's step). */
 static int cr_grounded(const carom_world *w, const cr_contact *c)
 {
-    return w->bodies[c->a].type != CAROM_BODY_DYNAMIC ||
-           w->bodies[c->b].type != CAROM_BODY_DYNAMIC;
+    int ta = w->bodies[c->a].type, tb = w->bodies[c->b].type;
+    if (ta == CAROM_BODY_STATIC || tb == CAROM_BODY_STATIC)
+        return 2;
+    return ta != CAROM_BODY_DYNAMIC || tb != CAROM_BODY_DYNAMIC;
 }
 
 /* Separation of point p now, from the bodies' motion since the step start. */
@@ -282,9 +290,10 @@ int cr_solver_classify(carom_world *w, int events)
 void cr_solver_order(carom_world *w)
 {
     int i, pass;
-    /* the order of the sweeps: moving pairs, then grounded ones */
+    /* the order of the sweeps: moving pairs, then those with a kinematic
+     * body, then those with a static one (cr_grounded) */
     w->solve_count = 0;
-    for (pass = 0; pass < 2; ++pass)
+    for (pass = 0; pass < 3; ++pass)
         for (i = 0; i < w->contact_count; ++i) {
             const cr_contact *c = &w->contacts[i];
             if ((c->flags & CR_CONTACT_SOLVE) && cr_grounded(w, c) == pass)
