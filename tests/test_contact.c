@@ -283,6 +283,68 @@ START_TEST(test_box_dropped_onto_a_resting_box_is_caught)
 }
 END_TEST
 
+/* ---- contact points -------------------------------------------------------- */
+
+/*
+ * A disc (radius 0.5, I = m r^2 / 2) strikes the floor from a gap, no
+ * gravity, e and mu given: Newton's normal impulse Jn = (1 + e) m |vy| and
+ * a tangential one that stops the slip of its lowest point, vx + w r, if
+ * mu Jn allows: Jt = m slip / 3, so vx' = vx - slip / 3 and w' = w -
+ * 2 slip / (3 r). (a) vx 2, no spin, vy -5, e 0.5, mu 0.3, 5 cm gap:
+ * Jt = 2/3 m < mu Jn = 2.25 m, so it sticks: vx' = 4/3, w' = -8/3. (b)
+ * Rolling already (vx 4, w -8), vy -5, e 0.9, mu 0.3, 8 cm gap: no slip,
+ * no friction: vx and w unchanged. The discrete method took a circle's
+ * contact point midway across the gap, its friction lever R + gap / 2:
+ * (a) left at 1.376 m/s and -2.621 rad/s still slipping, (b) at 4.096 and
+ * -7.585 (found by a review). A circle's arm is its surface point now.
+ */
+START_TEST(test_disc_bounce_from_a_gap_takes_friction_at_its_surface)
+{
+    static const float gap[2] = {0.05f, 0.08f}, vx[2] = {2.0f, 4.0f}, w0[2] = {0.0f, -8.0f},
+                       e[2] = {0.5f, 0.9f};
+    int m, k;
+    for (m = 0; m < CAROM_METHOD_COUNT; ++m)
+        for (k = 0; k < 2; ++k) {
+            carom_world_def wd = carom_default_world_def();
+            carom_body_def bd = carom_default_body_def();
+            double slip = (double)vx[k] + 0.5 * (double)w0[k];
+            carom_body_state d;
+            tw t;
+            int disc;
+            wd.method = (carom_method)m;
+            wd.gravity.y = 0.0f;
+            wd.max_bodies = 2;
+            t = tw_make(&wd);
+            bd.type = CAROM_BODY_STATIC;
+            ck_assert_int_eq(carom_body_def_set_box(&bd, 500.0f, 0.5f), CAROM_OK);
+            bd.position.y = -0.5f;
+            bd.restitution = e[k];
+            bd.friction = 0.3f;
+            tw_add(&t, &bd);
+            bd = carom_default_body_def();
+            bd.radius = 0.5f;
+            bd.position.y = 0.5f + gap[k];
+            bd.velocity.x = vx[k];
+            bd.velocity.y = -5.0f;
+            bd.angular_velocity = w0[k];
+            bd.restitution = e[k];
+            bd.friction = 0.3f;
+            disc = tw_add(&t, &bd);
+            tw_steps(&t, 30);
+            d = tw_state(&t, disc);
+            ck_assert_msg(fabs(d.velocity.x - ((double)vx[k] - slip / 3.0)) < 1e-4 &&
+                              fabs(d.angular_velocity - ((double)w0[k] - 2.0 * slip / 1.5)) < 1e-4 &&
+                              fabs(d.velocity.y - 5.0 * (double)e[k]) < 1e-4,
+                          "%s, case %d: v = (%g, %g), w = %g; want (%g, %g), %g",
+                          carom_method_name((carom_method)m), k, (double)d.velocity.x,
+                          (double)d.velocity.y, (double)d.angular_velocity,
+                          (double)vx[k] - slip / 3.0, 5.0 * (double)e[k],
+                          (double)w0[k] - 2.0 * slip / 1.5);
+            tw_free(&t);
+        }
+}
+END_TEST
+
 Suite *suite_contact(void)
 {
     Suite *s = suite_create("contact");
@@ -294,6 +356,7 @@ Suite *suite_contact(void)
     tcase_add_test(tk, test_contact_capacity_fails_the_step_cleanly);
     tcase_add_test(tk, test_steps_with_nothing_awake_leave_no_trace);
     tcase_add_test(tk, test_box_dropped_onto_a_resting_box_is_caught);
+    tcase_add_test(tk, test_disc_bounce_from_a_gap_takes_friction_at_its_surface);
     suite_add_tcase(s, tc);
     suite_add_tcase(s, tk);
     return s;
