@@ -1679,6 +1679,119 @@ START_TEST(test_overlap_closing_slower_than_rounding_is_pushed_apart)
 END_TEST
 
 /*
+ * A ball squeezed between the floor and another ball, e = 1, no friction,
+ * no gravity, rest speed 0: A, 0.6 mm above the floor and falling, is
+ * struck by B from above, bounces off the floor 0.3 ms later while B is
+ * still within the slop of it, and comes back up into B. Kinetic energy
+ * is kept exactly by every impact (Newton, e = 1): the step ends with the
+ * energy it began with. The floor's instant held A and B's touching row
+ * for the rest of the substep, inelastically, though A had been leaving
+ * B: 0.25 % of the energy was lost (found by a review; an elastic gas of
+ * 25 balls lost 0.7 % in 100,000 steps, a drop at a time). A row that was
+ * opening may now close as fast as it opened, as in the instant's solve.
+ */
+START_TEST(test_ball_squeezed_between_floor_and_ball_keeps_its_energy)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    double e0, e1;
+    tw t;
+    int a, b;
+    wd.gravity.y = 0.0f;
+    wd.rest_speed = 0.0f;
+    wd.max_bodies = 3;
+    t = tw_make(&wd);
+    bd.type = CAROM_BODY_STATIC;
+    ck_assert_int_eq(carom_body_def_set_box(&bd, 6.0f, 0.5f), CAROM_OK);
+    bd.position.y = -5.5f;
+    bd.restitution = 1.0f;
+    bd.friction = 0.0f;
+    tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    bd.radius = 0.6f;
+    bd.restitution = 1.0f;
+    bd.friction = 0.0f;
+    bd.position.x = -0.6665f;
+    bd.position.y = -4.3994f;
+    bd.velocity.x = 3.2421f;
+    bd.velocity.y = -0.3607f;
+    a = tw_add(&t, &bd);
+    bd.position.x = -0.3911f;
+    bd.position.y = -3.2309f;
+    bd.velocity.x = 1.3828f;
+    bd.velocity.y = -0.5045f;
+    b = tw_add(&t, &bd);
+    e0 = 0.5 * (3.2421 * 3.2421 + 0.3607 * 0.3607 + 1.3828 * 1.3828 + 0.5045 * 0.5045);
+    tw_steps(&t, 1);
+    {
+        carom_body_state sa = tw_state(&t, a), sb = tw_state(&t, b);
+        e1 = 0.5 * ((double)sa.velocity.x * sa.velocity.x + (double)sa.velocity.y * sa.velocity.y +
+                    (double)sb.velocity.x * sb.velocity.x + (double)sb.velocity.y * sb.velocity.y);
+    }
+    ck_assert_msg(fabs(e1 / e0 - 1.0) < 1e-5, "kinetic energy %g of %g after the step", e1, e0);
+    tw_free(&t);
+}
+END_TEST
+
+/* The same in a gas: 25 elastic balls of radius 0.6 m in a closed 10 m
+ * box, 2 m/s, for 30,000 steps: they lose no energy (they gain a little,
+ * the documented rounding drift of about 3e-5 in 6000 steps). */
+START_TEST(test_dense_elastic_gas_loses_no_energy_over_long_runs)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def g = carom_default_body_def(), bd = carom_default_body_def();
+    unsigned seed = 2026u;
+    double e0 = 0.0, e = 0.0, lowest = 1.0;
+    tw t;
+    int i, k;
+    wd.gravity.y = 0.0f;
+    wd.rest_speed = 0.0f;
+    wd.max_bodies = 29;
+    t = tw_make(&wd);
+    g.type = CAROM_BODY_STATIC;
+    g.restitution = 1.0f;
+    g.friction = 0.0f;
+    for (i = 0; i < 4; ++i) {
+        float s = i & 1 ? 1.0f : -1.0f;
+        ck_assert_int_eq(carom_body_def_set_box(&g, i < 2 ? 6.0f : 0.5f, i < 2 ? 0.5f : 6.0f),
+                         CAROM_OK);
+        g.position.x = i < 2 ? 0.0f : 5.5f * s;
+        g.position.y = i < 2 ? 5.5f * s : 0.0f;
+        tw_add(&t, &g);
+    }
+    bd.radius = 0.6f;
+    bd.restitution = 1.0f;
+    bd.friction = 0.0f;
+    for (i = 0; i < 25; ++i) {
+        seed = seed * 1103515245u + 12345u;
+        bd.velocity.x = (float)((seed >> 8) & 0xffff) / 65536.0f * 4.0f - 2.0f;
+        seed = seed * 1103515245u + 12345u;
+        bd.velocity.y = (float)((seed >> 8) & 0xffff) / 65536.0f * 4.0f - 2.0f;
+        bd.position.x = -4.0f + 2.0f * (float)(i % 5);
+        bd.position.y = -4.0f + 2.0f * (float)(i / 5);
+        tw_add(&t, &bd);
+        e0 += 0.5 * ((double)bd.velocity.x * bd.velocity.x +
+                     (double)bd.velocity.y * bd.velocity.y);
+    }
+    for (k = 0; k < 30000; ++k) {
+        tw_steps(&t, 1);
+        if (k % 100 != 99)
+            continue;
+        e = 0.0;
+        for (i = 0; i < 25; ++i) {
+            carom_body_state b = tw_state(&t, 4 + i);
+            e += 0.5 * ((double)b.velocity.x * b.velocity.x +
+                        (double)b.velocity.y * b.velocity.y);
+        }
+        lowest = e / e0 < lowest ? e / e0 : lowest;
+    }
+    ck_assert_msg(lowest > 1.0 - 1e-5 && e / e0 < 1.0 + 1e-3,
+                  "energy at its lowest %.7f of the start, at the end %.7f", lowest, e / e0);
+    tw_free(&t);
+}
+END_TEST
+
+/*
  * Two spinning boxes in zero gravity, e = 0.5, no friction: a corner of A
  * strikes a face of B, they bounce apart at half their approach, and the
  * turn brings a corner of B onto a face of A 4.3 ms later, in the next
@@ -1766,6 +1879,8 @@ Suite *suite_events(void)
     tcase_add_test(tc, test_box_landing_nearly_flat_keeps_its_energy);
     tcase_add_test(tc, test_parting_boxes_after_an_elastic_impact_keep_their_energy);
     tcase_add_test(tc, test_pair_struck_back_within_a_substep_bounces_at_its_instant);
+    tcase_add_test(tc, test_ball_squeezed_between_floor_and_ball_keeps_its_energy);
+    tcase_add_test(tc, test_dense_elastic_gas_loses_no_energy_over_long_runs);
     tcase_add_test(tc, test_elastic_gas_of_1000_circles_keeps_kinetic_energy);
     tcase_add_test(tc, test_dense_elastic_gas_keeps_kinetic_energy_over_6000_steps);
     tcase_add_test(tc, test_spinning_box_bouncing_off_a_wall_with_friction_makes_no_energy);
