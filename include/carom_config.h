@@ -374,7 +374,9 @@
  * the dynamic bodies, so a scene scaled by 100 in lengths and gravity
  * behaves the same) and each body's acceleration |a| (gravity plus force /
  * mass):
- *   linear slop        CAROM_SLOP_PER_LENGTH x L
+ *   linear slop        CAROM_SLOP_PER_LENGTH x L, at least
+ *                      CAROM_SLOP_SPACINGS float spacings of the body
+ *                      centre farthest from the origin
  *   speculative reach  CAROM_SPECULATIVE_SLOPS x slop, plus the motion of
  *                      the pair in the step
  *   push-out speed     CAROM_PUSH_SPEED_PER_LENGTH x L per second
@@ -386,6 +388,18 @@
 #ifndef CAROM_SLOP_PER_LENGTH
 #define CAROM_SLOP_PER_LENGTH 1.0e-3f /**< contact distance per length unit:
                                            0.56 mm for unit boxes */
+#endif
+
+#ifndef CAROM_SLOP_SPACINGS
+#define CAROM_SLOP_SPACINGS 8.0f /**< the automatic slop is at least this
+                                      many float spacings (FLT_EPSILON x
+                                      |x|) of the body centre farthest from
+                                      the origin, so that the positions
+                                      resolve it (a pyramid at y = 1e4,
+                                      where floats are 1 mm apart, crept
+                                      0.5 m a minute with a 0.56 mm slop);
+                                      it binds beyond about 1,000 length
+                                      units from the origin */
 #endif
 
 #ifndef CAROM_SPECULATIVE_SLOPS

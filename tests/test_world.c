@@ -814,6 +814,62 @@ START_TEST(test_method_changes_between_steps)
 END_TEST
 
 /*
+ * A pyramid of 36 boxes of 1 m (8 at the base, 5 cm gaps) on a static
+ * floor at y = 1e4, where floats are 1 mm apart, sleep off: in 10 s no box
+ * moves more than a centimetre, as at the origin. The automatic slop was
+ * 0.56 mm, below the float spacing of the positions, and the pyramid
+ * crept on their rounding: 12 cm in 10 s, 0.5 m in a minute (found by a
+ * review). The slop is now at least CAROM_SLOP_SPACINGS spacings of the
+ * farthest centre.
+ */
+START_TEST(test_pyramid_far_from_the_origin_holds)
+{
+    static const carom_method methods[2] = {CAROM_METHOD_EVENTS, CAROM_METHOD_DISCRETE};
+    int m, row, i;
+    for (m = 0; m < 2; ++m) {
+        carom_world_def wd = carom_default_world_def();
+        carom_body_def bd = carom_default_body_def();
+        carom_tolerances tol;
+        float x0[36], y0[36];
+        double worst = 0.0;
+        int n = 0;
+        tw t;
+        wd.method = methods[m];
+        wd.enable_sleep = 0;
+        wd.max_bodies = 37;
+        t = tw_make(&wd);
+        bd.type = CAROM_BODY_STATIC;
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 10.0f, 0.5f), CAROM_OK);
+        bd.position.y = 9999.5f;
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 0.5f, 0.5f), CAROM_OK);
+        for (row = 0; row < 8; ++row)
+            for (i = 0; i < 8 - row; ++i) {
+                bd.position.x = -3.675f + 0.525f * (float)row + 1.05f * (float)i;
+                bd.position.y = 10000.5f + (float)row;
+                x0[n] = bd.position.x;
+                y0[n] = bd.position.y;
+                tw_add(&t, &bd);
+                ++n;
+            }
+        ck_assert_int_eq(carom_world_get_tolerances(t.w, &tol), CAROM_OK);
+        ck_assert_msg(tol.linear_slop >= CAROM_SLOP_SPACINGS * FLT_EPSILON * 10007.5f,
+                      "slop %g at y = 1e4", (double)tol.linear_slop);
+        tw_steps(&t, 600);
+        for (i = 0; i < n; ++i) {
+            carom_body_state b = tw_state(&t, 1 + i);
+            double d = hypot((double)b.position.x - x0[i], (double)b.position.y - y0[i]);
+            worst = d > worst ? d : worst;
+        }
+        ck_assert_msg(worst < 0.01, "%s: a box moved %g m in 10 s",
+                      carom_method_name(methods[m]), worst);
+        tw_free(&t);
+    }
+}
+END_TEST
+
+/*
  * Bodies added to a running world are primed only if a contact holds one
  * of them: a body added far from a stack in motion changes no bit of the
  * stack (it used to set off the cold-start priming, 256 velocity sweeps
@@ -873,6 +929,7 @@ Suite *suite_world(void)
     Suite *s = suite_create("world");
     TCase *tc = tcase_create("api");
     tcase_add_test(tc, test_tolerances_follow_the_bodies_and_the_definition);
+    tcase_add_test(tc, test_pyramid_far_from_the_origin_holds);
     tcase_add_test(tc, test_method_changes_between_steps);
     tcase_add_test(tc, test_substeps_grow_where_gravity_outruns_the_slop);
     tcase_add_test(tc, test_pile_of_small_circles_does_not_sink_into_itself);
