@@ -557,9 +557,14 @@ carom_status carom_world_step(carom_world *w);
  * nothing happens). The world returns to the capacities of its own buffer
  * and stays usable; the last step's warm starts and touching pairs are kept
  * if they fit, else dropped. Call it before freeing the buffer of a world
- * made with grow set.
+ * made with grow set: the memory is always given back.
+ * Returns CAROM_OK, CAROM_ERR_NULL, or CAROM_ERR_PAIR_CAPACITY when the
+ * touching pairs did not fit and were dropped: the next step then reports
+ * a begin-touch again for every pair still touching, with no end-touch
+ * before it, and none for the pairs that parted (reset any count of
+ * touches kept from the touch events).
  */
-void carom_world_release(carom_world *w);
+carom_status carom_world_release(carom_world *w);
 
 carom_status carom_world_set_method(carom_world *w, carom_method method);
 carom_method carom_world_get_method(const carom_world *w);

@@ -1169,26 +1169,34 @@ carom_status carom_world_step(carom_world *w)
 }
 
 #if CAROM_ENABLE_GROW
-void carom_world_release(carom_world *w)
+carom_status carom_world_release(carom_world *w)
 {
     carom_world_def nd;
     cr_caps c;
     cr_layout l;
-    if (!w || !w->pool_mem)
-        return;
+    int kept;
+    if (!w)
+        return CAROM_ERR_NULL;
+    if (!w->pool_mem)
+        return CAROM_OK;
     nd = w->def;
     nd.max_pairs = w->buf_pairs;
     nd.max_contacts = w->buf_contacts;
     cr_caps_of(&nd, &c);
     (void)cr_layout_of(&c, &l); /* (it fitted the buffer at init) */
+    /* touching pairs that do not fit are dropped: the next step begins
+     * them again, with no end between (a program counting its begin and
+     * end events must know: the status says so) */
+    kept = w->touch_count <= c.touches;
     cr_pool_move(w, w->buf_pool, &c, &l);
     w->def.grow.release(w->def.grow.user, w->pool_mem);
     w->pool_mem = 0;
+    return kept ? CAROM_OK : CAROM_ERR_PAIR_CAPACITY;
 }
 #else
-void carom_world_release(carom_world *w)
+carom_status carom_world_release(carom_world *w)
 {
-    (void)w; /* nothing was ever taken */
+    return w ? CAROM_OK : CAROM_ERR_NULL; /* nothing was ever taken */
 }
 #endif
 

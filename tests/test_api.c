@@ -628,7 +628,7 @@ static void three_stacks(int grow)
         ck_assert_int_eq(begins, 8);
     }
     ck_assert_int_eq(ends, 0);
-    carom_world_release(t.w);
+    (void)carom_world_release(t.w);
     tw_free(&t);
 }
 

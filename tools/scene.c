@@ -795,7 +795,7 @@ static void scene_grow_release(void *user, void *block)
 void scene_free_world(carom_world *w, void *mem)
 {
     if (w)
-        carom_world_release(w);
+        (void)carom_world_release(w);
     free(mem);
 }
 
