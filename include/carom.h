@@ -308,7 +308,7 @@ typedef struct carom_body_def {
     carom_rot rotation;       /**< default (1, 0); normalised on add */
     carom_vec2 velocity;      /**< of the centre of mass, m/s */
     float angular_velocity;   /**< rad/s */
-    float density;            /**< kg/m^2, > 0; default 1 */
+    float density;            /**< kg/m^2, > 0 (unless mass is given); default 1 */
     float mass;               /**< kg; 0: from density; > 0 overrides density */
     float restitution;        /**< [0, 1]; default 0. A contact uses the
                                    larger of its two bodies' values */
@@ -407,7 +407,11 @@ const char *carom_version(void);
  * ====================================================================== */
 
 #if CAROM_ENABLE_ANGLES
-/** Unit rotation of `angle` radians (|angle| up to about 1e5 is accurate). */
+/** Unit rotation of `angle` radians: sin and cos of the float angle to
+ * 3e-7 for |angle| up to 1e5; beyond, whole turns are taken off with 2 pi
+ * a float (3e-2 off at 1e6, where angles themselves are 0.06 rad apart);
+ * beyond 1e9, and for NaN or an infinity, the identity (no status: check
+ * the angle first if it may not be finite). */
 carom_rot carom_rot_from_angle(float angle);
 
 /** Angle of a rotation in [-pi, pi]: (-pi, pi] to within rounding (a
@@ -440,7 +444,9 @@ carom_status carom_world_def_validate(const carom_world_def *def);
 
 carom_body_def carom_default_body_def(void);
 
-/** Make `def` a box of half extents (hx, hy) centred on the body origin. */
+/** Make `def` a box of half extents (hx, hy) centred on the body origin:
+ * CAROM_ERR_DEGENERATE_POLYGON below CAROM_LIMIT_MIN_SIZE, as
+ * carom_world_add_body would say. */
 carom_status carom_body_def_set_box(carom_body_def *def, float hx, float hy);
 
 /** Check a body definition without adding it. */
@@ -461,8 +467,9 @@ carom_status carom_body_get_state(const carom_world *w, int id,
 carom_status carom_body_get_mass(const carom_world *w, int id, float *mass,
                                  float *inertia);
 
-/** Replace a body's constant force (N) and torque (N m)
- * (CAROM_ENABLE_FORCES). Wakes the body. */
+/** Replace a dynamic body's constant force (N) and torque (N m)
+ * (CAROM_ENABLE_FORCES). Wakes the body. A static or kinematic body:
+ * CAROM_ERR_BAD_BODY_TYPE (forces move dynamic bodies only). */
 carom_status carom_body_set_force(carom_world *w, int id, carom_vec2 force,
                                   float torque);
 

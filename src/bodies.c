@@ -320,6 +320,8 @@ carom_status carom_body_apply_impulse(carom_world *w, int id, carom_vec2 impulse
     if (!cr_finite(impulse.x) || !cr_finite(impulse.y) || !cr_finite(point.x) ||
         !cr_finite(point.y))
         return CAROM_ERR_NOT_FINITE;
+    if (!cr_v2_within(point, CAROM_LIMIT_MAX_LENGTH))
+        return CAROM_ERR_OUT_OF_RANGE;
     b = &w->bodies[s];
     v = cr_vmadd(b->v, b->inv_m, impulse);
     om = b->w;
@@ -425,6 +427,8 @@ carom_status carom_body_apply_force(carom_world *w, int id, carom_vec2 force,
     if (!cr_finite(force.x) || !cr_finite(force.y) || !cr_finite(point.x) ||
         !cr_finite(point.y))
         return CAROM_ERR_NOT_FINITE;
+    if (!cr_v2_within(point, CAROM_LIMIT_MAX_LENGTH))
+        return CAROM_ERR_OUT_OF_RANGE; /* a point beyond the world */
 #if CAROM_ENABLE_ROTATION
     tq = cr_vcross(cr_vsub(point, w->bodies[s].x), force);
 #endif
@@ -607,6 +611,10 @@ carom_status carom_body_set_force(carom_world *w, int id, carom_vec2 force,
     st = cr_slot_of(w, id, &s);
     if (st != CAROM_OK)
         return st;
+    /* forces move dynamic bodies only (as carom_body_apply_force; a review
+     * found any force, 1e30 N included, accepted on a static body) */
+    if (w->bodies[s].type != CAROM_BODY_DYNAMIC)
+        return CAROM_ERR_BAD_BODY_TYPE;
     if (!cr_finite(force.x) || !cr_finite(force.y) || !cr_finite(torque))
         return CAROM_ERR_NOT_FINITE;
     if (!cr_accel_in_range(&w->info[s], force, torque))

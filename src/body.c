@@ -187,7 +187,9 @@ carom_status carom_body_def_set_box(carom_body_def *def, float hx, float hy)
         return CAROM_ERR_DISABLED;
     if (!cr_finite(hx) || !cr_finite(hy))
         return CAROM_ERR_NOT_FINITE;
-    if (!cr_gt(hx, 0.0f) || !cr_gt(hy, 0.0f))
+    /* the width carom_world_add_body asks of a polygon (a review found
+     * 1e-7 accepted here and refused there) */
+    if (!cr_ge(hx, CAROM_LIMIT_MIN_SIZE) || !cr_ge(hy, CAROM_LIMIT_MIN_SIZE))
         return CAROM_ERR_DEGENERATE_POLYGON;
     if (cr_gt(hx, CAROM_LIMIT_MAX_LENGTH) || cr_gt(hy, CAROM_LIMIT_MAX_LENGTH))
         return CAROM_ERR_OUT_OF_RANGE;
@@ -332,7 +334,9 @@ carom_status cr_body_build(const carom_body_def *def, cr_body *hot,
         return CAROM_ERR_BAD_FRICTION;
     if (cr_lt(def->mass, 0.0f))
         return CAROM_ERR_BAD_MASS;
-    if (!cr_gt(def->density, 0.0f))
+    /* a mass given overrides the density, which is then not read (a
+     * review found density 0 with mass 2 refused, against the header) */
+    if (!cr_gt(def->mass, 0.0f) && !cr_gt(def->density, 0.0f))
         return CAROM_ERR_BAD_DENSITY;
     qlen = cr_add(cr_mul(def->rotation.c, def->rotation.c),
                   cr_mul(def->rotation.s, def->rotation.s));

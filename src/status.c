@@ -14,7 +14,7 @@ static const char *const cr_status_names[CAROM_STATUS_COUNT] = {
     "capacity must be > 0 and fit in memory",
     "buffer too small",
     "bad parameter (substeps or iterations outside 1..64, max substeps or "
-    "relax 0..64, sleep time < 0)",
+    "relax 0..64, sleep time < 0, grow alloc without release or the reverse)",
     "unknown method",
     "bad body type",
     "bad shape type",

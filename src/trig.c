@@ -16,10 +16,20 @@
 #define CR_TWO_OVER_PI 0.636619772367581343f
 #define CR_PIO4 0.785398163397448309616f
 
-/* Largest |angle| reduced exactly (quadrant count below 2^12). Larger
- * angles are first brought into range by whole turns, with the rounding
- * error of that subtraction. */
+/* Largest |angle| reduced exactly (quadrant count below 2^12). */
 #define CR_TRIG_MAX_ARG 6.0e3f
+/* pi/2 in four floats of 8, 8, 7 and 24 significant bits: k * Q1..Q3 are
+ * exact for quadrant counts k < 2^16, angles up to CR_TRIG_FAR_ARG (the
+ * reduction of angles past CR_TRIG_MAX_ARG; below it the three-float split
+ * above gives the same bits as ever). */
+#define CR_PIO2_Q1 1.5703125f
+#define CR_PIO2_Q2 4.825592041015625e-4f
+#define CR_PIO2_Q3 1.2665987014770508e-6f
+#define CR_PIO2_Q4 9.92093629470503e-10f
+#define CR_TRIG_FAR_ARG 1.0e5f
+/* Larger angles are first brought into range by whole turns, with the
+ * rounding error of that subtraction (their own spacing is 0.008 rad and
+ * more there). */
 /* Beyond this a float angle has no fractional bits worth reducing. */
 #define CR_TRIG_HUGE_ARG 1.0e9f
 
@@ -31,7 +41,7 @@ carom_rot cr_rot_from_angle(float angle)
 
     if (!cr_finite(angle) || cr_gt(cr_abs(angle), CR_TRIG_HUGE_ARG))
         return cr_rot_identity();
-    if (cr_gt(cr_abs(angle), CR_TRIG_MAX_ARG)) {
+    if (cr_gt(cr_abs(angle), CR_TRIG_FAR_ARG)) {
         /* whole turns off: q = round(angle / 2 pi) */
         float turns = cr_mul(angle, 0.159154943091895336f);
         long q = (long)(cr_ge(turns, 0.0f) ? cr_add(turns, 0.5f) : cr_sub(turns, 0.5f));
@@ -41,8 +51,13 @@ carom_rot cr_rot_from_angle(float angle)
     k = cr_mul(angle, CR_TWO_OVER_PI);
     quadrant = (long)(cr_ge(k, 0.0f) ? cr_add(k, 0.5f) : cr_sub(k, 0.5f));
     k = (float)quadrant;
-    r = cr_sub(cr_sub(cr_sub(angle, cr_mul(k, CR_PIO2_1)), cr_mul(k, CR_PIO2_2)),
-               cr_mul(k, CR_PIO2_3));
+    if (cr_gt(cr_abs(angle), CR_TRIG_MAX_ARG))
+        r = cr_sub(cr_sub(cr_sub(cr_sub(angle, cr_mul(k, CR_PIO2_Q1)), cr_mul(k, CR_PIO2_Q2)),
+                          cr_mul(k, CR_PIO2_Q3)),
+                   cr_mul(k, CR_PIO2_Q4));
+    else
+        r = cr_sub(cr_sub(cr_sub(angle, cr_mul(k, CR_PIO2_1)), cr_mul(k, CR_PIO2_2)),
+                   cr_mul(k, CR_PIO2_3));
 
     /* |r| <= pi/4: Taylor series in Horner form; the first omitted terms
      * are below 2e-9, under half an ulp of the results. */

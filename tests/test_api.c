@@ -1248,6 +1248,9 @@ START_TEST(test_refused_calls_change_nothing)
         ck_assert_int_eq(carom_body_apply_angular_impulse(w, id, 1.0f), CAROM_ERR_BAD_BODY_TYPE);
         ck_assert_int_eq(carom_body_apply_force(w, id, z, z), CAROM_ERR_BAD_BODY_TYPE);
         ck_assert_int_eq(carom_body_apply_torque(w, id, 1.0f), CAROM_ERR_BAD_BODY_TYPE);
+        /* nor given a constant force (it was accepted, 1e30 N included) */
+        ck_assert_int_eq(carom_body_set_force(w, id, vhuge, 0.0f), CAROM_ERR_BAD_BODY_TYPE);
+        ck_assert_int_eq(carom_body_set_force(w, id, z, 0.0f), CAROM_ERR_BAD_BODY_TYPE);
     }
 
     /* NaN and infinity, in every argument that is a number */
@@ -1278,6 +1281,14 @@ START_TEST(test_refused_calls_change_nothing)
     ck_assert_int_eq(carom_body_apply_force(w, ball, vhuge, tw_state(&t, ball).center),
                      CAROM_ERR_OUT_OF_RANGE);
     ck_assert_int_eq(carom_body_apply_torque(w, ball, huge), CAROM_ERR_OUT_OF_RANGE);
+    /* a point beyond the world, even on the force's line through the
+     * centre (no torque: it was accepted by apply_force) */
+    {
+        carom_vec2 c = tw_state(&t, ball).center, far = c, up = {0.0f, 1.0f};
+        far.y = huge;
+        ck_assert_int_eq(carom_body_apply_force(w, ball, up, far), CAROM_ERR_OUT_OF_RANGE);
+        ck_assert_int_eq(carom_body_apply_impulse(w, ball, up, far), CAROM_ERR_OUT_OF_RANGE);
+    }
     ck_assert_int_eq(carom_body_set_force(w, ball, vhuge, 0.0f), CAROM_ERR_OUT_OF_RANGE);
     ck_assert_int_eq(carom_body_set_force(w, ball, z, huge), CAROM_ERR_OUT_OF_RANGE);
     ck_assert_int_eq(carom_body_set_restitution(w, ball, 1.5f), CAROM_ERR_BAD_RESTITUTION);

@@ -177,6 +177,8 @@ START_TEST(test_bad_body_fields_get_their_status)
     EXPECT(bd.radius = -1.0f, CAROM_ERR_BAD_RADIUS);
     EXPECT(bd.density = 0.0f, CAROM_ERR_BAD_DENSITY);
     EXPECT(bd.density = -2.0f, CAROM_ERR_BAD_DENSITY);
+    /* a mass given overrides the density, which is not read then */
+    EXPECT((bd.density = 0.0f, bd.mass = 2.0f), CAROM_OK);
     EXPECT(bd.mass = -1.0f, CAROM_ERR_BAD_MASS);
     EXPECT(bd.restitution = 1.5f, CAROM_ERR_BAD_RESTITUTION);
     EXPECT(bd.restitution = -0.1f, CAROM_ERR_BAD_RESTITUTION);
@@ -195,6 +197,11 @@ START_TEST(test_bad_body_fields_get_their_status)
     ck_assert_int_eq(carom_body_def_validate(NULL), CAROM_ERR_NULL);
     ck_assert_int_eq(carom_body_def_set_box(&bd, 0.0f, 1.0f), CAROM_ERR_DEGENERATE_POLYGON);
     ck_assert_int_eq(carom_body_def_set_box(&bd, NAN, 1.0f), CAROM_ERR_NOT_FINITE);
+    /* thinner than a body may be: refused here, as carom_world_add_body would */
+    ck_assert_int_eq(carom_body_def_set_box(&bd, 1.0f, 0.5f * CAROM_LIMIT_MIN_SIZE),
+                     CAROM_ERR_DEGENERATE_POLYGON);
+    ck_assert_int_eq(carom_body_def_set_box(&bd, CAROM_LIMIT_MIN_SIZE, 1.0f), CAROM_OK);
+    ck_assert_int_eq(carom_body_def_validate(&bd), CAROM_OK);
 }
 END_TEST
 
