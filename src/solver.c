@@ -1264,14 +1264,23 @@ void cr_solver_levels(carom_world *w)
 {
     int *queue = w->support, n = 0, head, i, k;
     cr_v2 up;
-    for (i = 0; i < w->slot_count; ++i)
+    for (i = 0; i < w->slot_count; ++i) {
         w->sbody[i].level = -1;
+        w->sbody[i].capped = 0;
+    }
     w->support_count = 0;
     if (!cr_up(w, &up))
         return;
     for (i = 0; i < w->contact_count; ++i) {
         const cr_contact *c = &w->contacts[i];
         int a = c->a, b = c->b;
+        /* a static body resting on a dynamic one is its ceiling */
+        if (w->bodies[a].type == CAROM_BODY_STATIC && w->bodies[b].type == CAROM_BODY_DYNAMIC &&
+            cr_supports(c, b, up))
+            w->sbody[b].capped = 1;
+        else if (w->bodies[b].type == CAROM_BODY_STATIC &&
+                 w->bodies[a].type == CAROM_BODY_DYNAMIC && cr_supports(c, a, up))
+            w->sbody[a].capped = 1;
         if (w->bodies[a].type != CAROM_BODY_DYNAMIC && w->bodies[b].type == CAROM_BODY_DYNAMIC &&
             w->sbody[b].level < 0 && cr_supports(c, a, up)) {
             w->sbody[b].level = 0;
@@ -1621,6 +1630,8 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
         w->sbody[w->support[i]].walk = 0; /* anchored */
     for (i = 0; i < w->support_count; ++i) {
         int u = w->support[i];
+        if (w->sbody[u].capped)
+            continue; /* a static body above has the last word */
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];
             int next = p->a == u ? p->next_a : p->next_b;
@@ -1779,6 +1790,8 @@ static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap)
         return;
     for (i = 0; i < w->support_count; ++i) {
         int u = w->support[i];
+        if (w->sbody[u].capped)
+            continue; /* a static body above has the last word */
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];
             int next = p->a == u ? p->next_a : p->next_b;
