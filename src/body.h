@@ -37,6 +37,9 @@
 #define CR_BODY_PUT_BACK_LAST 2048u /* ... and in the last step */
 #define CR_BODY_TELEPORTED 4096u /* set_transform since the last step: its
                                     touches are found anew, none carried */
+#define CR_BODY_CAPPED 8192u /* touches a static body above it (a ceiling):
+                                the shock sweeps of its supports never push
+                                it up (cr_solver_levels, every step) */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

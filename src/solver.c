@@ -1266,7 +1266,7 @@ void cr_solver_levels(carom_world *w)
     cr_v2 up;
     for (i = 0; i < w->slot_count; ++i) {
         w->sbody[i].level = -1;
-        w->sbody[i].capped = 0;
+        w->bodies[i].flags = (unsigned short)(w->bodies[i].flags & ~CR_BODY_CAPPED);
     }
     w->support_count = 0;
     if (!cr_up(w, &up))
@@ -1277,10 +1277,10 @@ void cr_solver_levels(carom_world *w)
         /* a static body resting on a dynamic one is its ceiling */
         if (w->bodies[a].type == CAROM_BODY_STATIC && w->bodies[b].type == CAROM_BODY_DYNAMIC &&
             cr_supports(c, b, up))
-            w->sbody[b].capped = 1;
+            w->bodies[b].flags |= CR_BODY_CAPPED;
         else if (w->bodies[b].type == CAROM_BODY_STATIC &&
                  w->bodies[a].type == CAROM_BODY_DYNAMIC && cr_supports(c, a, up))
-            w->sbody[a].capped = 1;
+            w->bodies[a].flags |= CR_BODY_CAPPED;
         if (w->bodies[a].type != CAROM_BODY_DYNAMIC && w->bodies[b].type == CAROM_BODY_DYNAMIC &&
             w->sbody[b].level < 0 && cr_supports(c, a, up)) {
             w->sbody[b].level = 0;
@@ -1630,7 +1630,7 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
         w->sbody[w->support[i]].walk = 0; /* anchored */
     for (i = 0; i < w->support_count; ++i) {
         int u = w->support[i];
-        if (w->sbody[u].capped)
+        if (w->bodies[u].flags & CR_BODY_CAPPED)
             continue; /* a static body above has the last word */
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];
@@ -1790,7 +1790,7 @@ static void cr_correct_shock(carom_world *w, const cr_substep *s, float cap)
         return;
     for (i = 0; i < w->support_count; ++i) {
         int u = w->support[i];
-        if (w->sbody[u].capped)
+        if (w->bodies[u].flags & CR_BODY_CAPPED)
             continue; /* a static body above has the last word */
         for (k = w->pair_head[u]; k >= 0;) {
             const cr_pair *p = &w->pairs[k];

@@ -46,8 +46,6 @@ typedef struct cr_solver_body {
     unsigned char active; /* has a contact solved this substep */
     unsigned char held;   /* events: an impact's hold changed its drift
                              this substep */
-    unsigned char capped; /* touches a static body above it (a ceiling):
-                             support never pushes it up (cr_solver_levels) */
     unsigned char walk;   /* a flag of one walk over the support order:
                              the warm start's unloading reduced a contact
                              of what rests on it (cr_solver_unload); shock
