@@ -18,18 +18,17 @@
 
 /* Largest |angle| reduced exactly (quadrant count below 2^12). */
 #define CR_TRIG_MAX_ARG 6.0e3f
-/* pi/2 in four floats of 8, 8, 7 and 24 significant bits: k * Q1..Q3 are
- * exact for quadrant counts k < 2^16, angles up to CR_TRIG_FAR_ARG (the
- * reduction of angles past CR_TRIG_MAX_ARG; below it the three-float split
- * above gives the same bits as ever). */
+/* Past CR_TRIG_MAX_ARG, up to CR_TRIG_FAR_ARG, pi/2 in four floats of 8,
+ * 8, 7 and 24 significant bits: k * Q1..Q3 are exact for quadrant counts
+ * k < 2^16 (below CR_TRIG_MAX_ARG the three-float split above gives the
+ * bits it always gave). Larger angles are first brought into range by
+ * whole turns, with the rounding error of that subtraction (their own
+ * spacing is 0.008 rad and more there). */
 #define CR_PIO2_Q1 1.5703125f
 #define CR_PIO2_Q2 4.825592041015625e-4f
 #define CR_PIO2_Q3 1.2665987014770508e-6f
 #define CR_PIO2_Q4 9.92093629470503e-10f
 #define CR_TRIG_FAR_ARG 1.0e5f
-/* Larger angles are first brought into range by whole turns, with the
- * rounding error of that subtraction (their own spacing is 0.008 rad and
- * more there). */
 /* Beyond this a float angle has no fractional bits worth reducing. */
 #define CR_TRIG_HUGE_ARG 1.0e9f
 

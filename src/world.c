@@ -539,13 +539,14 @@ static int cr_substeps_for(const carom_world *w, float length)
 /* The tolerances of this step (carom_config.h: scale). */
 void cr_scale_compute(const carom_world *w, cr_scale *s)
 {
-    float sum = 0.0f, all = 0.0f;
+    float sum = 0.0f, all = 0.0f, far = 0.0f;
     int i, n = 0, m = 0;
     for (i = 0; i < w->slot_count; ++i) {
         const cr_body *b = &w->bodies[i];
         if (!(b->flags & CR_BODY_ALIVE))
             continue;
         all = cr_add(all, w->info[i].shape.size);
+        far = cr_max(far, cr_max(cr_abs(b->x.x), cr_abs(b->x.y)));
         ++m;
         if (b->type == CAROM_BODY_DYNAMIC) {
             sum = cr_add(sum, w->info[i].shape.size);
@@ -560,21 +561,15 @@ void cr_scale_compute(const carom_world *w, cr_scale *s)
         s->length = cr_div(all, (float)m);
     else
         s->length = 1.0f;
-    if (cr_ge(w->def.linear_slop, 0.0f))
-        s->slop = w->def.linear_slop;
-    else {
-        /* at least CAROM_SLOP_SPACINGS float spacings of the farthest
-         * centre from the origin: a slop the positions cannot resolve
-         * lets a resting pile creep on their rounding (a pyramid of 1 m
-         * boxes at y = 1e4, where floats are 1 mm apart, spread 0.5 m
-         * in a minute with its slop of 0.56 mm) */
-        float far = 0.0f;
-        for (i = 0; i < w->slot_count; ++i)
-            if (w->bodies[i].flags & CR_BODY_ALIVE)
-                far = cr_max(far, cr_max(cr_abs(w->bodies[i].x.x), cr_abs(w->bodies[i].x.y)));
-        s->slop = cr_max(cr_mul(CAROM_SLOP_PER_LENGTH, s->length),
-                         cr_mul(cr_mul(CAROM_SLOP_SPACINGS, FLT_EPSILON), far));
-    }
+    /* automatic: at least CAROM_SLOP_SPACINGS float spacings of the
+     * farthest centre from the origin: a slop the positions cannot
+     * resolve lets a resting pile creep on their rounding (a pyramid of
+     * 1 m boxes at y = 1e4, where floats are 1 mm apart, spread 0.5 m in
+     * a minute with its slop of 0.56 mm) */
+    s->slop = cr_ge(w->def.linear_slop, 0.0f)
+                  ? w->def.linear_slop
+                  : cr_max(cr_mul(CAROM_SLOP_PER_LENGTH, s->length),
+                           cr_mul(cr_mul(CAROM_SLOP_SPACINGS, FLT_EPSILON), far));
     s->spec = cr_mul(CAROM_SPECULATIVE_SLOPS, s->slop);
     s->push = cr_mul(CAROM_PUSH_SPEED_PER_LENGTH, s->length);
     s->face_tol = cr_mul(CAROM_FACE_TOL_PER_SLOP, s->slop);
