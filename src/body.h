@@ -40,6 +40,10 @@
 #define CR_BODY_CAPPED 8192u /* touches a static body above it (a ceiling):
                                 the shock sweeps of its supports never push
                                 it up (cr_solver_levels, every step) */
+#define CR_BODY_SHIFTED 16384u /* the position sweep moved it more than a
+                                  slop in a substep of this step: pushed
+                                  out of an overlap, not at rest
+                                  (cr_solver_correct, cr_island_sleep) */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

@@ -223,7 +223,7 @@ void cr_island_sleep(carom_world *w, float dt)
         /* (a body not moving at all is at rest held or not: sleeping
          * changes nothing of it, and a rack of touching balls in zero
          * gravity sleeps until the break) */
-        if (!can_sleep[id] && !cr_eq(speed, 0.0f)) {
+        if ((!can_sleep[id] && !cr_eq(speed, 0.0f)) || (b->flags & CR_BODY_SHIFTED)) {
             b->still_time = 0.0f;
             cr_window_restart(w, id);
             continue;

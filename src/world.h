@@ -46,11 +46,12 @@ typedef struct cr_solver_body {
     unsigned char active; /* has a contact solved this substep */
     unsigned char held;   /* events: an impact's hold changed its drift
                              this substep */
-    unsigned char walk;   /* a flag of one walk over the support order:
-                             the warm start's unloading reduced a contact
-                             of what rests on it (cr_solver_unload); shock
+    unsigned char walk;   /* a flag of one walk over the bodies: the warm
+                             start's unloading reduced a contact of what
+                             rests on it (cr_solver_unload); shock
                              propagation holds it where it is, anchored
-                             (cr_solver_shock) */
+                             (cr_solver_shock); the position sweep's deep
+                             sweeps take its rows (cr_solver_correct) */
 #if CAROM_SOFT_DEEP_CONTACTS
     unsigned char mixed;  /* in a deep resting overlap with a body of unlike
                              density at the step's start (cr_mark_mixed) */

@@ -101,8 +101,17 @@ static inline tw tw_pair(carom_method method, float dt, float rest_speed,
  * `method`. Returns the largest and the final kinetic energy, each over
  * the starting one.
  */
+static inline void tw_elastic_gas_seeded(carom_method method, int n, int steps,
+                                         unsigned seed, double *worst, double *end);
 static inline void tw_elastic_gas(carom_method method, int n, int steps,
                                   double *worst, double *end)
+{
+    tw_elastic_gas_seeded(method, n, steps, 12345u, worst, end);
+}
+
+/* The same gas, its velocities drawn from `seed`. */
+static inline void tw_elastic_gas_seeded(carom_method method, int n, int steps,
+                                         unsigned seed, double *worst, double *end)
 {
     carom_world_def wd = carom_default_world_def();
     carom_body_def bd = carom_default_body_def();
@@ -111,7 +120,6 @@ static inline void tw_elastic_gas(carom_method method, int n, int steps,
     int i, k, side = 1;
     double e0 = 0.0, e = 0.0;
     float half, pitch;
-    unsigned seed = 12345u;
     while (side * side < n)
         ++side;
     /* 0.25 m^2 per ball, at least */
