@@ -840,6 +840,11 @@ static void cr_mark_deep(carom_world *w, int i)
         w->sbody[i].walk = 1;
 }
 
+static int cr_deep_marked(const carom_world *w, int i)
+{
+    return w->bodies[i].type == CAROM_BODY_DYNAMIC && w->sbody[i].walk;
+}
+
 /*
  * The position sweep takes the rows between two dynamic bodies as Box2D
  * 2.4's position solver does (nonlinear Gauss-Seidel): each pushes its
@@ -878,8 +883,10 @@ void cr_solver_correct(carom_world *w, const cr_substep *s, int iterations)
             int any = 0, free_pair, capped = 0;
             if (!(c->flags & CR_CONTACT_SOLVE))
                 continue;
-            /* the deep sweeps: only where the deep rows push */
-            if (it >= iterations && !sa->walk && !sb->walk)
+            /* the deep sweeps: only where the deep rows push (the marks
+             * of dynamic bodies: static and kinematic ones keep theirs
+             * from other passes, or none) */
+            if (it >= iterations && !cr_deep_marked(w, c->a) && !cr_deep_marked(w, c->b))
                 continue;
             free_pair = cr_grounded(w, c) == 0;
             for (k = 0; k < c->count; ++k) {
