@@ -12,13 +12,17 @@
  * The anchors (from each centre of mass to the contact point), the normal
  * and the effective masses are computed once per step at the step's start
  * pose, and stay fixed through the substeps; only the separation is updated
- * from the bodies' displacements (solver.c), as in Box2D v3.
+ * from the bodies' displacements (solver.c), as in Box2D v3. Contacts with
+ * a turning kinematic body are the exception: made again during the step
+ * (cr_contacts_turn), whose face turns under a body sliding along it.
  *
  * Warm starting: last step's impulses are matched by body pair and feature
  * id. Both lists are sorted by (a, b), so one merge walk matches them.
  */
 #include "narrowphase.h"
 #include "world.h"
+
+#include <string.h>
 
 /* Smallest det(K) / (k11 k22) for which a 2-point manifold is solved as a
  * block (1 - cos^2 of the angle between the two points' impulse rows). */
@@ -212,6 +216,15 @@ int cr_ghost(const carom_world *w, int a, int b, const cr_manifold *m)
     return 0;
 }
 
+#if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
+/* Is a or b a kinematic body that turns? */
+static int cr_turning_kinematic(const cr_body *a, const cr_body *b)
+{
+    return (a->type == CAROM_BODY_KINEMATIC && !cr_eq(a->w, 0.0f)) ||
+           (b->type == CAROM_BODY_KINEMATIC && !cr_eq(b->w, 0.0f));
+}
+#endif
+
 /* Make contact c of pair i from manifold m (the step's start). */
 static void cr_contact_make(carom_world *w, cr_contact *c, int i, const cr_manifold *m,
                             float dt, const cr_warm *wm)
@@ -223,6 +236,13 @@ static void cr_contact_make(carom_world *w, cr_contact *c, int i, const cr_manif
     c->flags = m->graze ? CR_CONTACT_GRAZE : 0u;
     c->reach = cr_pair_reach(w, pr->a, pr->b, dt);
     cr_contact_from_manifold(w, c, m);
+#if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
+    if ((c->flags & CR_CONTACT_TOUCHING) &&
+        cr_turning_kinematic(&w->bodies[pr->a], &w->bodies[pr->b])) {
+        c->flags |= CR_CONTACT_TURNS;
+        ++w->turning_contacts;
+    }
+#endif
     if (wm) {
         int k;
         cr_warm_match(c, wm);
@@ -253,6 +273,7 @@ carom_status cr_contacts_build(carom_world *w, float dt)
 {
     int i, j = 0, grazes = 0;
     w->contact_count = 0;
+    w->turning_contacts = 0;
     for (i = 0; i < w->pair_count; ++i) {
         cr_pair *pr = &w->pairs[i];
         const cr_body *A = &w->bodies[pr->a], *B = &w->bodies[pr->b];
@@ -381,6 +402,46 @@ void cr_contact_remake(carom_world *w, cr_contact *c)
     c->flags = (unsigned short)((c->flags & ~CR_CONTACT_GRAZE) | (m.graze ? CR_CONTACT_GRAZE : 0u));
     cr_contact_fill(w, c, pr, &m);
 }
+
+#if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
+void cr_contacts_turn(carom_world *w)
+{
+    int i, k, j;
+    for (i = 0; i < w->contact_count; ++i) {
+        cr_contact *c = &w->contacts[i];
+        const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+        cr_contact_point old[CR_MANIFOLD_POINTS];
+        unsigned short keep;
+        int n = c->count;
+        cr_manifold m;
+        if (!(c->flags & CR_CONTACT_TURNS) || !(c->flags & CR_CONTACT_SOLVE))
+            continue;
+        memcpy(old, c->pts, sizeof old);
+        if (!cr_collide(&w->info[c->a].shape, A->x, A->q, &w->info[c->b].shape, B->x, B->q,
+                        c->reach, w->scale.face_tol, w->scale.corner, &m) ||
+            cr_ghost(w, c->a, c->b, &m)) {
+            c->count = 0;
+            c->flags &= (unsigned short)~CR_CONTACT_TOUCHING;
+            continue;
+        }
+        keep = (unsigned short)(c->flags & ~(unsigned)(CR_CONTACT_GRAZE | CR_CONTACT_TOUCHING));
+        cr_contact_fill(w, c, &w->pairs[c->pair], &m);
+        c->flags = (unsigned short)(keep | (c->flags & CR_CONTACT_TOUCHING) |
+                                    (m.graze ? CR_CONTACT_GRAZE : 0u));
+        /* the impulses so far, point by point: the warm start of the
+         * substep, and the restitution pass's record */
+        for (k = 0; k < c->count; ++k)
+            for (j = 0; j < n; ++j)
+                if (c->pts[k].id == old[j].id) {
+                    c->pts[k].pn = old[j].pn;
+                    c->pts[k].pt = old[j].pt;
+                    c->pts[k].max_pn = old[j].max_pn;
+                    c->pts[k].rel_vn = old[j].rel_vn;
+                    break;
+                }
+    }
+}
+#endif
 
 /* Keep this step's impulses for the next, in (a, b) order: contacts made
  * during the step sit at the end of the list, so walk the pairs. They

@@ -91,6 +91,10 @@ typedef struct cr_contact_point {
                                   corner, with no flush neighbour carrying
                                   it across (contact.c, cr_ghost): not one
                                   that shows a seam is a ghost */
+#define CR_CONTACT_TURNS 2048u /* touching at the step's start, and a body
+                                  of it is kinematic and turns: its normal
+                                  and points are made again during the
+                                  step (cr_contacts_turn) */
 
 typedef struct cr_contact {
     int a, b;          /* body slots, a < b */
@@ -190,6 +194,18 @@ int cr_contact_add(carom_world *w, int pair);
  * impact changed the bodies' course the step-start normal and points are
  * stale. Impulses start at zero; no points if the pair is out of reach. */
 void cr_contact_remake(carom_world *w, cr_contact *c);
+
+/* The solver's contacts with a turning kinematic body that touched at
+ * the step's start (CR_CONTACT_TURNS), made again at the bodies' current
+ * poses, their impulses kept point by point: at the start of each substep
+ * after the first, and before each position sweep. The solver holds the
+ * normal a contact was made with; a kinematic bar turning a sixth of a
+ * radian a step turns its face under a body sliding along it, which read
+ * the slide as separation and sank 13 to 32 cm into the bar, and through
+ * it. (One that touched only later, a ball a turning blade strikes from
+ * afar, is the impacts' or the continuous guard's, at the strike's
+ * instant.) */
+void cr_contacts_turn(carom_world *w);
 
 #if CR_TWO_POINTS
 /*

@@ -564,6 +564,8 @@ static int cr_fly_off(carom_world *w, int i, int s, cr_v2 xm, cr_rot qm, const c
                                               rest_of_step,
                                               cr_min(thr, cr_mul(CR_CENTRE_DEPTH, ss->half_width)));
     }
+#else
+    (void)toi;
 #endif
     if (!f.blocked) {
         /* the flight, straight and turning uniformly, through the grid */

@@ -383,6 +383,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->pair_count = 0;
     w->pair_head = CR_AT(pair_head, int);
     w->contact_count = 0;
+    w->turning_contacts = 0;
     w->warm_count = 0;
     w->sbody = CR_AT(sbody, cr_solver_body);
     w->solve_count = 0;
@@ -943,6 +944,13 @@ static carom_status cr_step(carom_world *w)
             cr_solver_classify(w, events_now);
         cr_sync_active(w, t0);
         cr_solver_update_deltas(w);
+#if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
+        if (k > 0 && w->turning_contacts > 0) {
+            CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
+            cr_contacts_turn(w);
+            CR_PHASE(w, CAROM_PHASE_RESTING);
+        }
+#endif
         cr_solver_kick_and_warm(w, &sub);
         cr_solver_unload(w);
         cr_solver_solve(w, &sub, 1,
@@ -968,6 +976,13 @@ static carom_status cr_step(carom_world *w)
             cr_solver_release_struck(w);
             CR_PHASE(w, CAROM_PHASE_RESTING);
         }
+#if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
+        if (w->turning_contacts > 0) {
+            CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
+            cr_contacts_turn(w);
+            CR_PHASE(w, CAROM_PHASE_RESTING);
+        }
+#endif
         cr_solver_correct(w, &sub, CR_CORRECT_SWEEPS);
         cr_solver_update_deltas(w);
         cr_solver_solve(w, &sub, 0, w->def.relax_iterations);
@@ -1024,6 +1039,7 @@ static carom_status cr_step_taken(carom_world *w)
     w->budget_hit = 0;
     w->error_body = -1;
     w->contact_count = 0;
+    w->turning_contacts = 0;
     w->pair_count = 0;
 
     st = cr_step(w);
@@ -1096,6 +1112,7 @@ static void cr_pool_move(carom_world *w, unsigned char *pool, const cr_caps *c,
     cr_pool_assign(w, pool, c, l);
     w->pair_count = 0;
     w->contact_count = 0;
+    w->turning_contacts = 0;
     w->heap_count = 0;
     w->event_count = 0;
     w->touch_event_count = 0;

@@ -145,6 +145,8 @@ struct carom_world {
     int *support;             /* supported bodies, bottom up (breadth first
                                  from the static ones) */
     int support_count;
+    int turning_contacts;     /* contacts with a turning kinematic body
+                                 (CR_CONTACT_TURNS) this step */
     unsigned contact_edits;   /* contacts made or remade during steps */
     unsigned shock_marked;    /* contact_edits when cr_solver_mark_shocks
                                  last ran */
