@@ -1039,21 +1039,42 @@ float cr_energy_share(float lin, float quad, float room)
  * impacts taken in turn, and can add energy (x 1.085 in one step in
  * tools/scenes/limits/spinning-box-two-walls.scene; an elastic box gas
  * heated up 25 % in 3600 steps). Per island of bodies joined by bounces
- * (kinematic bodies that move may do work: their islands are left alone),
  * the kinetic energy after the pass may not pass what the bodies would
  * have had with no contact at all (their free velocities at the step's
- * end), nor what they had before the pass: if it does, the pass's
+ * end), nor what they had before the pass, plus the work a moving
+ * kinematic body they bounce off may do (cr_kinematic_work): if it does,
+ * the pass's
  * velocity changes are scaled back by the largest factor in [0, 1] that
  * keeps it there (the energy is a quadratic in the factor). The velocities
  * before the pass are in vp, wp (the position correction's scratch, done);
  * the sums go in the island root's v0, w0, dp, dq (free at the step's end:
  * cr_solver_begin sets them again). Returns 1 if some island was scaled.
  */
+#if CAROM_ENABLE_KINEMATIC
+/* The most work moving kinematic body k may do on dynamic body d in the
+ * restitution pass: an impulse P from a surface moving at u changes the
+ * energy by P.u at most (in the surface's frame no bounce with e <= 1
+ * adds energy), and P is at most 2 m (s + u), s the fastest point of d
+ * before the pass and u of k near d. (Left unlimited, a thin box spinning
+ * at thousands of rad/s in a pile a fast rotor stirred took 70,000 rad/s
+ * from one pass, and the pile's speeds grew without end.) */
+static float cr_kinematic_work(const carom_world *w, int k, int d)
+{
+    const cr_body *K = &w->bodies[k], *D = &w->bodies[d];
+    const cr_solver_body *sd = &w->sbody[d];
+    float ext = w->info[d].shape.extent;
+    float u = cr_add(cr_vlen(K->v),
+                     cr_mul(cr_abs(K->w), cr_add(cr_vlen(cr_vsub(D->x, K->x)), ext)));
+    float sp = cr_add(cr_vlen(sd->vp), cr_mul(cr_abs(sd->wp), ext));
+    return cr_mul(cr_mul(2.0f, w->info[d].m), cr_mul(u, cr_add(sp, u)));
+}
+#endif
+
 #define CR_E_PRE(sb) ((sb)->v0.x)
 #define CR_E_LIN(sb) ((sb)->v0.y)
 #define CR_E_QUAD(sb) ((sb)->w0)
 #define CR_E_REF(sb) ((sb)->dp.x)
-#define CR_E_FREE_OF_LIMIT(sb) ((sb)->dp.y)
+#define CR_E_WORK(sb) ((sb)->dp.y)
 #define CR_E_SCALE(sb) ((sb)->dq.c)
 static int cr_limit_bounce_energy(carom_world *w)
 {
@@ -1071,27 +1092,29 @@ static int cr_limit_bounce_energy(carom_world *w)
             continue;
         if (A->type == CAROM_BODY_DYNAMIC && parent[c->a] < 0) {
             parent[c->a] = c->a;
-            CR_E_FREE_OF_LIMIT(&w->sbody[c->a]) = 0.0f;
+            CR_E_WORK(&w->sbody[c->a]) = 0.0f;
         }
         if (B->type == CAROM_BODY_DYNAMIC && parent[c->b] < 0) {
             parent[c->b] = c->b;
-            CR_E_FREE_OF_LIMIT(&w->sbody[c->b]) = 0.0f;
+            CR_E_WORK(&w->sbody[c->b]) = 0.0f;
         }
         if (A->type == CAROM_BODY_DYNAMIC && B->type == CAROM_BODY_DYNAMIC) {
             ra = cr_root(parent, c->a);
             rb = cr_root(parent, c->b);
             if (ra != rb) {
-                float f = cr_max(CR_E_FREE_OF_LIMIT(&w->sbody[ra]),
-                                 CR_E_FREE_OF_LIMIT(&w->sbody[rb]));
+                float f = cr_add(CR_E_WORK(&w->sbody[ra]),
+                                 CR_E_WORK(&w->sbody[rb]));
                 parent[ra < rb ? rb : ra] = ra < rb ? ra : rb;
-                CR_E_FREE_OF_LIMIT(&w->sbody[ra < rb ? ra : rb]) = f;
+                CR_E_WORK(&w->sbody[ra < rb ? ra : rb]) = f;
             }
         }
 #if CAROM_ENABLE_KINEMATIC
         else if (A->type == CAROM_BODY_KINEMATIC && cr_body_moves(A)) {
-            CR_E_FREE_OF_LIMIT(&w->sbody[cr_root(parent, c->b)]) = 1.0f;
+            cr_solver_body *r = &w->sbody[cr_root(parent, c->b)];
+            CR_E_WORK(r) = cr_add(CR_E_WORK(r), cr_kinematic_work(w, c->a, c->b));
         } else if (B->type == CAROM_BODY_KINEMATIC && cr_body_moves(B)) {
-            CR_E_FREE_OF_LIMIT(&w->sbody[cr_root(parent, c->a)]) = 1.0f;
+            cr_solver_body *r = &w->sbody[cr_root(parent, c->a)];
+            CR_E_WORK(r) = cr_add(CR_E_WORK(r), cr_kinematic_work(w, c->b, c->a));
         }
 #endif
     }
@@ -1131,9 +1154,7 @@ static int cr_limit_bounce_energy(carom_world *w)
         if (parent[i] != i)
             continue;
         CR_E_SCALE(sr) = 1.0f;
-        if (cr_gt(CR_E_FREE_OF_LIMIT(sr), 0.0f))
-            continue;
-        cap = cr_max(CR_E_REF(sr), CR_E_PRE(sr));
+        cap = cr_add(cr_max(CR_E_REF(sr), CR_E_PRE(sr)), CR_E_WORK(sr));
         after = cr_add(CR_E_PRE(sr), cr_add(CR_E_LIN(sr), CR_E_QUAD(sr)));
         if (!cr_gt(after, cr_mul(cap, cr_add(1.0f, CR_BOUNCE_ENERGY_TOL))) ||
             !cr_gt(CR_E_QUAD(sr), 0.0f))
@@ -1175,7 +1196,7 @@ static int cr_limit_bounce_energy(carom_world *w)
 #undef CR_E_LIN
 #undef CR_E_QUAD
 #undef CR_E_REF
-#undef CR_E_FREE_OF_LIMIT
+#undef CR_E_WORK
 #undef CR_E_SCALE
 
 int cr_solver_restitution(carom_world *w)
