@@ -1038,17 +1038,17 @@ float cr_energy_share(float lin, float quad, float room)
  * corner, boxes of an elastic gas) the targets are not those of the
  * impacts taken in turn, and can add energy (x 1.085 in one step in
  * tools/scenes/limits/spinning-box-two-walls.scene; an elastic box gas
- * heated up 25 % in 3600 steps). Per island of bodies joined by bounces
+ * heated up 25 % in 3600 steps). Per island of bodies joined by bounces,
  * the kinetic energy after the pass may not pass what the bodies would
  * have had with no contact at all (their free velocities at the step's
  * end), nor what they had before the pass, plus the work a moving
  * kinematic body they bounce off may do (cr_kinematic_work): if it does,
- * the pass's
- * velocity changes are scaled back by the largest factor in [0, 1] that
- * keeps it there (the energy is a quadratic in the factor). The velocities
- * before the pass are in vp, wp (the position correction's scratch, done);
- * the sums go in the island root's v0, w0, dp, dq (free at the step's end:
- * cr_solver_begin sets them again). Returns 1 if some island was scaled.
+ * the pass's velocity changes are scaled back by the largest factor in
+ * [0, 1] that keeps it there (the energy is a quadratic in the factor).
+ * The velocities before the pass are in vp, wp (the position correction's
+ * scratch, done); the sums go in the island root's v0, w0, dp, dq (free
+ * at the step's end: cr_solver_begin sets them again). Returns 1 if some
+ * island was scaled.
  */
 #if CAROM_ENABLE_KINEMATIC
 /* The most work moving kinematic body k may do on dynamic body d in the
