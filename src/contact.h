@@ -197,8 +197,8 @@ void cr_contact_remake(carom_world *w, cr_contact *c);
 
 /* The solver's contacts with a turning kinematic body that touched at
  * the step's start (CR_CONTACT_TURNS), made again at the bodies' current
- * poses, their impulses kept point by point: at the start of each substep
- * after the first, and before each position sweep. The solver holds the
+ * poses, their impulses kept point by point: before each position sweep,
+ * for it and for the next substep's velocity sweeps. The solver holds the
  * normal a contact was made with; a kinematic bar turning a sixth of a
  * radian a step turns its face under a body sliding along it, which read
  * the slide as separation and sank 13 to 32 cm into the bar, and through

@@ -944,13 +944,6 @@ static carom_status cr_step(carom_world *w)
             cr_solver_classify(w, events_now);
         cr_sync_active(w, t0);
         cr_solver_update_deltas(w);
-#if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
-        if (k > 0 && w->turning_contacts > 0) {
-            CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
-            cr_contacts_turn(w);
-            CR_PHASE(w, CAROM_PHASE_RESTING);
-        }
-#endif
         cr_solver_kick_and_warm(w, &sub);
         cr_solver_unload(w);
         cr_solver_solve(w, &sub, 1,
@@ -977,6 +970,8 @@ static carom_status cr_step(carom_world *w)
             CR_PHASE(w, CAROM_PHASE_RESTING);
         }
 #if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
+        /* contacts with a turning kinematic body, as the poses are now: for
+         * the position sweep, and the next substep's velocity sweeps */
         if (w->turning_contacts > 0) {
             CR_PHASE(w, CAROM_PHASE_NARROWPHASE);
             cr_contacts_turn(w);
