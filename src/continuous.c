@@ -264,43 +264,35 @@ static int cr_local_outside(const cr_shape *ss, cr_v2 p)
     return cr_gt(cr_vlen2(p), cr_mul(ss->radius, ss->radius));
 }
 
-/* The same against a kinematic body S that turns: the centre's way as
- * seen from S, from the meeting at toi to the step's end, is a curve (a
- * body leaving a spinning blade goes round its tip in the blade's
- * frame, and the straight way would cut through the blade), followed in
- * CR_TURNING_PIECES straight pieces from where the meeting is outside S. */
-static int cr_centre_through_turning(const cr_shape *ss, const cr_body *S0, const cr_body *path,
-                                     const cr_drift *still, float toi, float dt, float depth)
+/* A body's centre, tau after a meeting at toi: on its course `path`
+ * (uniform, read with a still drift), or, if path is 0, on a flight from
+ * centre xm with velocity v and acceleration a. */
+typedef struct cr_way {
+    const cr_body *path;
+    cr_v2 xm, v, a;
+} cr_way;
+
+static cr_v2 cr_way_at(const cr_way *way, const cr_drift *still, float toi, float tau)
 {
-    float h = cr_div(cr_sub(dt, toi), (float)CR_TURNING_PIECES);
-    cr_v2 prev, xb, xs;
-    cr_rot qb, qs;
-    int k;
-    cr_pose_at(path, still, toi, &xb, &qb);
-    cr_pose_at(S0, still, toi, &xs, &qs);
-    prev = cr_inv_rotate(qs, cr_vsub(xb, xs));
-    if (!cr_local_outside(ss, prev))
-        return 0; /* (the meeting's centre already in S) */
-    for (k = 1; k <= CR_TURNING_PIECES; ++k) {
-        cr_v2 cur;
-        cr_pose_at(path, still, cr_add(toi, cr_mul((float)k, h)), &xb, &qb);
-        cr_pose_at(S0, still, cr_add(toi, cr_mul((float)k, h)), &xs, &qs);
-        cur = cr_inv_rotate(qs, cr_vsub(xb, xs));
-        if (cr_centre_through_local(ss, prev, cr_vsub(cur, prev), depth, 0))
-            return 1;
-        prev = cur;
-    }
-    return 0;
+    cr_v2 x;
+    cr_rot q;
+    if (!way->path)
+        return cr_vadd(way->xm, cr_drift_offset(way->v, way->a, tau));
+    cr_pose_at(way->path, still, cr_add(toi, tau), &x, &q);
+    return x;
 }
 
-/* Does a flight from the meeting (centre xm, at time toi, s's start pose
- * S0) to the step's end, its centre's way x(tau) = xm + v tau + a tau^2 / 2,
- * cut through turning kinematic body S, as seen from S? A body a blade
- * sends off on a straight line is caught again by the blade's turn, which
- * it would pass through (a 0.125 m box off a 9 m bar turning at 50 rad/s
- * ended on its trailing side). Followed in CR_TURNING_PIECES pieces. */
-static int cr_flight_through_turning(const cr_shape *ss, const cr_body *S0, cr_v2 xm, cr_v2 v,
-                                     cr_v2 a, float toi, float rest, float depth)
+/* The same against a kinematic body S that turns (start pose S0): the
+ * centre's way as seen from S, from the meeting at toi over `rest`, is a
+ * curve, followed in CR_TURNING_PIECES straight pieces. A body leaving a
+ * spinning blade goes round its tip in the blade's frame, and the straight
+ * way would cut through the blade; a body a blade sends off on a straight
+ * line is caught again by the blade's turn, which it would pass through (a
+ * 0.125 m box off a 9 m bar turning at 50 rad/s ended on its trailing
+ * side). With from_outside, a way whose meeting's centre is already in S
+ * does not cut through it. */
+static int cr_way_through_turning(const cr_shape *ss, const cr_body *S0, const cr_way *way,
+                                  float toi, float rest, float depth, int from_outside)
 {
     float h = cr_div(rest, (float)CR_TURNING_PIECES);
     cr_v2 prev, xs;
@@ -309,12 +301,14 @@ static int cr_flight_through_turning(const cr_shape *ss, const cr_body *S0, cr_v
     int k;
     cr_drift_still(&still);
     cr_pose_at(S0, &still, toi, &xs, &qs);
-    prev = cr_inv_rotate(qs, cr_vsub(xm, xs));
+    prev = cr_inv_rotate(qs, cr_vsub(cr_way_at(way, &still, toi, 0.0f), xs));
+    if (from_outside && !cr_local_outside(ss, prev))
+        return 0;
     for (k = 1; k <= CR_TURNING_PIECES; ++k) {
         float tau = cr_mul((float)k, h);
         cr_v2 cur;
         cr_pose_at(S0, &still, cr_add(toi, tau), &xs, &qs);
-        cur = cr_inv_rotate(qs, cr_vsub(cr_vadd(xm, cr_drift_offset(v, a, tau)), xs));
+        cur = cr_inv_rotate(qs, cr_vsub(cr_way_at(way, &still, toi, tau), xs));
         if (cr_centre_through_local(ss, prev, cr_vsub(cur, prev), depth, 0))
             return 1;
         prev = cur;
@@ -517,7 +511,7 @@ static int cr_flight_meets(void *ctx, int other)
  * takes the impulse there (s's velocity at that time) and flies on
  * ballistically to the step's end, as a body a wall or a blade sends off.
  * Kept (1) if the flight ends clear of s, does not pass through s as s
- * turns on (cr_flight_through_turning), and meets no other static or
+ * turns on (cr_way_through_turning), and meets no other static or
  * kinematic body on the way (the grid is searched along it: a light body
  * sent off at 9 m/s in a 3 cm box flew through its wall); otherwise its
  * velocity is put back as it was (0), and the caller holds it at the
@@ -560,9 +554,14 @@ static int cr_fly_off(carom_world *w, int i, int s, cr_v2 xm, cr_rot qm, const c
         const cr_shape *ss = &w->info[s].shape;
         float thr = cr_max(cr_mul(CR_THROUGH_SLOPS, w->scale.slop),
                            cr_mul(CR_THROUGH_WIDTH, sd->half_width));
-        f.blocked = cr_flight_through_turning(ss, &w->backup[s], xm, b->v, b->a, toi,
-                                              rest_of_step,
-                                              cr_min(thr, cr_mul(CR_CENTRE_DEPTH, ss->half_width)));
+        cr_way way;
+        way.path = 0;
+        way.xm = xm;
+        way.v = b->v;
+        way.a = b->a;
+        f.blocked = cr_way_through_turning(ss, &w->backup[s], &way, toi, rest_of_step,
+                                           cr_min(thr, cr_mul(CR_CENTRE_DEPTH, ss->half_width)),
+                                           0);
     }
 #else
     (void)toi;
@@ -746,10 +745,13 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
 #if CAROM_ENABLE_KINEMATIC && CAROM_ENABLE_ROTATION
     if (moving && !cr_eq(S->w, 0.0f)) {
         /* a turning kinematic body: the ways as seen from it are curves */
+        cr_way way;
+        way.path = &path;
+        way.xm = way.v = way.a = cr_v(0.0f, 0.0f);
         if (!cr_lt(sep1, cr_sub(cr_min(sep0, 0.0f), thr)) &&
             !cr_out_far_side(sd, b1->x, b1->q, ss, S, sep1, slop, w->scale.face_tol, m.n) &&
-            !cr_centre_through_turning(ss, S0, &path, &still, toi, dt,
-                                       cr_min(thr, cr_mul(CR_CENTRE_DEPTH, ss->half_width))))
+            !cr_way_through_turning(ss, S0, &way, toi, cr_sub(dt, toi),
+                                    cr_min(thr, cr_mul(CR_CENTRE_DEPTH, ss->half_width)), 1))
             return 0;
     } else
 #endif

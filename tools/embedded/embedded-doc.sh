@@ -183,7 +183,7 @@ wake="cr_island_wake_touched cr_island_wake"
 profile_api="carom_op_weights_preset cr_presets carom_op_name carom_phase_name cr_op_names cr_phase_names carom_profile_cost carom_profile_reset"
 block="cr_lcp2"
 trig="carom_rot_from_angle carom_rot_angle"
-continuous="cr_continuous_statics cr_continuous_escapes cr_escape_check cr_may_be_fast cr_escape_static cr_box_holds cr_box_merge cr_drift_still cr_is_wall cr_sweep_static cr_turn_between cr_path_turn cr_meet_static cr_fly_off cr_flight_meets cr_went_through cr_overlap_across cr_out_far_side cr_centre_through cr_centre_through_local cr_centre_through_turning cr_local_outside cr_reach_along"
+continuous="cr_continuous_statics cr_continuous_escapes cr_escape_check cr_may_be_fast cr_escape_static cr_box_holds cr_box_merge cr_drift_still cr_is_wall cr_sweep_static cr_turn_between cr_path_turn cr_meet_static cr_fly_off cr_flight_meets cr_went_through cr_overlap_across cr_out_far_side cr_centre_through cr_centre_through_local cr_way_at cr_way_through_turning cr_local_outside cr_reach_along"
 edits="carom_world_remove_body carom_body_set_velocity carom_body_set_angular_velocity carom_body_set_transform carom_body_apply_impulse carom_body_apply_angular_impulse carom_body_apply_force carom_body_apply_torque carom_body_set_restitution carom_body_set_friction carom_body_set_filter carom_body_set_force cr_wake_neighbours cr_forget_body"
 # code_list "NAME ...": `NAME`, `NAME` ... for the document
 code_list() { echo "$1" | awk '{ for (i = 1; i <= NF; i++) printf "%s`%s`", (i > 1 ? ", " : ""), $i }'; }
