@@ -1,24 +1,33 @@
 #!/bin/sh
 # cli_test.sh -- end-to-end tests of the carom command-line tool.
 #
-# usage: sh tests/cli_test.sh build/carom
+# usage: sh tests/cli_test.sh build/carom [build/carom-plain]
+#
+# With the second tool (the same command linked with the plain library,
+# no counters), its results must be build/carom's, bit for bit: counting
+# never changes the arithmetic.
 #
 # Prints one "ok - ..." / "not ok - ..." line per check, then
 # "N passed, M failed"; exits non-zero if any check failed.
 
 set -u
 
-if [ $# -ne 1 ]; then
-    echo "usage: sh tests/cli_test.sh PATH-TO-CAROM" >&2
+if [ $# -lt 1 ] || [ $# -gt 2 ]; then
+    echo "usage: sh tests/cli_test.sh PATH-TO-CAROM [PATH-TO-CAROM-PLAIN]" >&2
     exit 2
 fi
 cli=$1
+plain=${2:-}
 case $cli in
     /*) ;;
     *) cli=$(pwd)/$cli ;;
 esac
 if [ ! -x "$cli" ]; then
     echo "cli_test.sh: '$cli' is not an executable" >&2
+    exit 2
+fi
+if [ -n "$plain" ] && [ ! -x "$plain" ]; then
+    echo "cli_test.sh: '$plain' is not an executable" >&2
     exit 2
 fi
 
@@ -1068,6 +1077,31 @@ for view in -1e308,-1e308,1e308,1e308 0,0,1e-300,1e-300 0,0,1,1e-320; do
 done
 run render "$default_scene" -o "$tmp/fps.svg" --steps 50 --fps 1e-300
 expect_rc 0 "render --fps 1e-300"
+
+# ---- the plain build -------------------------------------------------------------
+# Same final states, traces and impacts as the profiling build, both
+# methods, on scenes that take every phase (polygons, rotation, friction,
+# impacts, resting contact, a kinematic rotor); `profile` says it cannot.
+if [ -n "$plain" ]; then
+    for scene in "$default_scene" "$root/tools/scenes/stress/heavy-on-light-m100.scene" \
+        "$root/tools/scenes/stress/rod-l2-tilt80.scene" \
+        "$root/tools/scenes/stress/rotor-elastic-pile-dt30.scene"; do
+        for method in events discrete; do
+            name="$(basename "$scene") --method $method"
+            "$cli" run "$scene" --method "$method" --steps 120 --trace "$tmp/t1" \
+                --events "$tmp/e1" >"$tmp/f1" 2>/dev/null
+            "$plain" run "$scene" --method "$method" --steps 120 --trace "$tmp/t2" \
+                --events "$tmp/e2" >"$tmp/f2" 2>/dev/null
+            check "plain build: $name: final state, trace and impacts the same bits" \
+                sh -c "cmp -s '$tmp/f1' '$tmp/f2' && cmp -s '$tmp/t1' '$tmp/t2' && \
+                       cmp -s '$tmp/e1' '$tmp/e2' && test -s '$tmp/f1'"
+        done
+    done
+    "$plain" profile "$default_scene" >"$tmp/out" 2>"$tmp/err"
+    rc=$?
+    expect_rc 2 "plain build: profile refused"
+    stderr_has "no profiler" "plain build: profile says the build has no profiler"
+fi
 
 # ---- summary -------------------------------------------------------------------
 

@@ -9,7 +9,7 @@ $(RENDER_OBJ): tools/render/render.c tools/render/render.h $(wildcard include/*.
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -c $< -o $@
 
-$(CLI): $(RENDER_OBJ)
+$(CLI) $(CLI_PLAIN): $(RENDER_OBJ)
 $(BUILD)/tools/carom_cli.o: tools/render/render.h
 
 # The pictures of docs/images/, drawn by build/carom render (needs gnuplot
@@ -32,3 +32,4 @@ render-images: $(CLI)
 	$(call render_still,bullet-events,tools/scenes/bullet.scene,1,--method events --impacts $(BULLET_VIEW))
 	$(call render_still,bullet-discrete,tools/scenes/bullet.scene,1,--method discrete --impacts $(BULLET_VIEW))
 	$(call render_still,stack,tools/scenes/stack.scene,600,--size 480)
+$(BUILD)/tools/carom_cli_plain.o: tools/render/render.h

@@ -6,7 +6,9 @@
 #       [--report FILE] [--jobs N] [--v3 PATH] [--carom PATH] [--box2d PATH]
 #       [--checker PATH] [--scenes DIR] [--timeout SEC] [--keep DIR]
 #
-# Engines: build/carom with --method events and with --method discrete;
+# Engines: build/carom (or --carom PATH; the Makefile gives
+# build/carom-plain, the same tool on the library without op counters)
+# with --method events and with --method discrete;
 # build/carom-box2d (Box2D 2.4.1, run with --quiet; skipped with a note if
 # it is not built); with --v3 PATH, a Box2D v3 harness taking the same
 # 'run SCENE [--trace F] [--events F]' interface. Each run writes the final
@@ -598,10 +600,11 @@ EOF
               printf "\n" }' "$tmp/table"
         printf '\n## Time per step\n\n'
         cat <<'EOF'
-Microseconds per step. carom: wall time of `build/carom run` writing the
-final state only (best of three when under 0.2 s), minus the best of three
-runs of the same command with `--steps 0`, divided by the steps
-(`build/carom` links the profiling build of the library;
+Microseconds per step. carom: wall time of `build/carom-plain run` writing
+the final state only (best of three when under 0.2 s), minus the best of
+three runs of the same command with `--steps 0`, divided by the steps
+(`build/carom-plain` is `build/carom` linked with the plain library, the
+one a program links: no op counters, the same bits;
 docs/benchmarks.md times `carom_world_step` alone). Box2D: the harness's
 own `--time` (its Step() calls only, one run). A carom body that sleeps
 costs almost nothing, so resting scenes are cheap in carom by design.

@@ -1,6 +1,6 @@
 # tools/stress/stress.mk -- the stress suite (tools/stress/, docs/stability.md).
 # Meant to be included by the Makefile (after tools/box2d.mk); uses its CC,
-# BUILD, CPPFLAGS, TOOL_CFLAGS, LIB, TOOL_OBJ, CLI and BOX2D_BIN. Standalone:
+# BUILD, CPPFLAGS, TOOL_CFLAGS, LIB, TOOL_OBJ, CLI_PLAIN and BOX2D_BIN. Standalone:
 #   make -f Makefile -f tools/stress/stress.mk stress-check
 #
 #   make stress          every scene of tools/scenes/stress through carom
@@ -25,7 +25,10 @@ STRESS_JOBS ?= 2
 STRESS_V3_BUILD := $(if $(B2V3_LIB),$(B2V3_BIN))
 STRESS_V3 ?= $(STRESS_V3_BUILD)
 STRESS_BOX2D := $(if $(shell pkg-config --exists box2d 2>/dev/null && echo yes),$(BOX2D_BIN))
-STRESS_ARGS = --carom $(CLI) --box2d $(BOX2D_BIN) --checker $(STRESS_CHECK) \
+# carom runs as $(CLI_PLAIN): the library without its op counters, as a
+# program links it (the same bits as $(CLI): tests/cli_test.sh), and timed
+# so, as Box2D's harness times its release build.
+STRESS_ARGS = --carom $(CLI_PLAIN) --box2d $(BOX2D_BIN) --checker $(STRESS_CHECK) \
     --jobs $(STRESS_JOBS) $(if $(STRESS_V3),--v3 $(STRESS_V3))
 
 # The pile, pyramid and pour scenes, timed side by side with Box2D 2.4.1
@@ -38,15 +41,15 @@ BENCH_BOX2D_SCENES ?= pyramid-b20,pyramid-b40,pour-500,pyramid-b20-s0.01,pyramid
 $(STRESS_CHECK): tools/stress/stress_check.c tools/scene.h $(wildcard include/*.h) $(TOOL_OBJ) $(LIB) | $(BUILD)/tools
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) tools/stress/stress_check.c $(TOOL_OBJ) $(LIB) -o $@ -lm
 
-stress: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D) $(STRESS_V3_BUILD)
+stress: $(CLI_PLAIN) $(STRESS_CHECK) $(STRESS_BOX2D) $(STRESS_V3_BUILD)
 	@sh tools/ensure-deps.sh plot
 	sh tools/stress/run.sh $(STRESS_ARGS) --report docs/stability.md
 
-stress-check: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D)
+stress-check: $(CLI_PLAIN) $(STRESS_CHECK) $(STRESS_BOX2D)
 	sh tools/stress/selftest.sh $(STRESS_CHECK)
 	sh tools/stress/run.sh $(STRESS_ARGS) --fast
 
-bench-box2d: $(CLI) $(STRESS_CHECK) $(STRESS_BOX2D)
+bench-box2d: $(CLI_PLAIN) $(STRESS_CHECK) $(STRESS_BOX2D)
 	@test -n "$(STRESS_BOX2D)" || { echo "bench-box2d: Box2D 2.4.1 not found (apt-get install libbox2d-dev)" >&2; exit 1; }
 	sh tools/stress/run.sh $(STRESS_ARGS) --jobs 1 --only $(BENCH_BOX2D_SCENES) --targets
 
