@@ -380,6 +380,10 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->bp.xbits = 0;
     w->bp.xmask = w->bp.ymask = 0u;
     w->bp.cell = w->bp.inv_cell = 1.0f;
+    w->bp.sweep_max = CR_SWEEP_MAX;
+    w->bp.sweep = 0;
+    w->bp.sweep_axis = 0;
+    w->bp.order_n = 0;
     w->pair_count = 0;
     w->pair_head = CR_AT(pair_head, int);
     w->contact_count = 0;

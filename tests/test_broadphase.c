@@ -1,7 +1,8 @@
 /*
  * test_broadphase.c -- the grid finds exactly the pairs that the all-pairs
  * box test finds, whatever the mix of sizes (walls larger than a cell,
- * tiny and huge coordinates), and the pair sort gives (a, b) order. Built
+ * tiny and huge coordinates), and the pair sort gives (a, b) order; so
+ * does the sweep that takes the place of the grid for few bodies. Built
  * with CAROM_ENABLE_GRID=0 (make unit-nogrid) the same tests check that
  * testing every box against every other gives the same pairs, sorted.
  */
@@ -10,6 +11,7 @@
 #include "test_util.h"
 
 #include "broadphase.h"
+#include "world.h"
 
 #define N_MAX 400
 
@@ -417,6 +419,206 @@ START_TEST(test_query_gives_every_overlapping_body_once_and_stops_on_request)
 }
 END_TEST
 
+/* ---- the sweep (few bodies) ----------------------------------------------- */
+
+/* The pairs of the bodies in list[0..m) (increasing slots), built and
+ * sorted, against the all-pairs test over those bodies. */
+static void check_listed(bp_fixture *f, const int *list, int m)
+{
+    long found;
+    int a, b, k = 0, expected = 0;
+    cr_broadphase_build(&f->bp, f->boxes, list, m);
+    found = cr_broadphase_pairs(&f->bp, f->boxes, accept_not_both_static, f, f->pairs,
+                                N_MAX * N_MAX / 2);
+    ck_assert_int_le(found, N_MAX * N_MAX / 2);
+#if CAROM_ENABLE_GRID
+    cr_pairs_sort(f->pairs, f->pair_tmp, (int)found, f->count, list[m - 1] + 1);
+#endif
+    for (a = 0; a < m; ++a)
+        for (b = a + 1; b < m; ++b) {
+            int i = list[a], j = list[b];
+            if (!box_overlap(&f->boxes[i], &f->boxes[j]) || (f->is_static[i] && f->is_static[j]))
+                continue;
+            ++expected;
+            ck_assert_msg(k < found, "missing pair (%d, %d)", i, j);
+            ck_assert_msg(f->pairs[k].a == i && f->pairs[k].b == j,
+                          "pair %d is (%d, %d), expected (%d, %d)", k, f->pairs[k].a,
+                          f->pairs[k].b, i, j);
+            ++k;
+        }
+    ck_assert_int_eq(found, expected);
+}
+
+/* Few bodies are swept instead of filed in the grid: the same pairs as the
+ * all-pairs test among bodies and walls, again and again as the boxes move
+ * (each sort starts from the last order) and as bodies leave and join (a
+ * slot the last order holds is gone, a new one is not in it yet). */
+START_TEST(test_sweep_equals_all_pairs_as_boxes_move_and_bodies_come_and_go)
+{
+    static bp_fixture f;
+    static int list[N_MAX];
+    unsigned seed = 4242u;
+    int n = 120, i, round, m;
+    fixture_init(&f, n);
+    f.bp.sweep_max = N_MAX;
+    random_boxes(&f, n, 99u, 4.0f, 0.05f, 0.4f);
+    f.boxes[0].lo_x = -5.0f; f.boxes[0].hi_x = 5.0f; f.boxes[0].lo_y = -4.5f; f.boxes[0].hi_y = -4.2f;
+    f.boxes[1].lo_x = -4.5f; f.boxes[1].hi_x = -4.2f; f.boxes[1].lo_y = -5.0f; f.boxes[1].hi_y = 5.0f;
+    f.boxes[2].lo_x = 4.2f; f.boxes[2].hi_x = 4.5f; f.boxes[2].lo_y = -5.0f; f.boxes[2].hi_y = 5.0f;
+    f.is_static[0] = f.is_static[1] = f.is_static[2] = 1;
+    for (round = 0; round < 8; ++round) {
+        /* rounds 2, 3, 6: every third body away (a different third each
+         * time), the rest all there */
+        for (i = 0, m = 0; i < n; ++i)
+            if (!((round == 2 || round == 3 || round == 6) && (i + round) % 3 == 0))
+                list[m++] = i;
+        check_listed(&f, list, m);
+#if CAROM_ENABLE_GRID
+        ck_assert_int_eq(f.bp.sweep, 1);
+        ck_assert_int_eq(f.bp.grid_count, m);
+#endif
+        for (i = 3; i < n; ++i) {
+            float dx = uniform(&seed, -0.3f, 0.3f), dy = uniform(&seed, -0.3f, 0.3f);
+            f.boxes[i].lo_x += dx;
+            f.boxes[i].hi_x += dx;
+            f.boxes[i].lo_y += dy;
+            f.boxes[i].hi_y += dy;
+        }
+    }
+    /* past sweep_max the grid takes over, and back */
+#if CAROM_ENABLE_GRID
+    f.bp.sweep_max = n - 1;
+    check_against_all_pairs(&f, n);
+    ck_assert_int_eq(f.bp.sweep, 0);
+    f.bp.sweep_max = N_MAX;
+    check_against_all_pairs(&f, n);
+    ck_assert_int_eq(f.bp.sweep, 1);
+#endif
+}
+END_TEST
+
+/* The sweep runs along the axis the bodies spread along: a tower of boxes
+ * along y (along x every box would meet every other), a row along x; the
+ * pairs are the same either way, and switching axis starts the order
+ * afresh. */
+START_TEST(test_sweep_runs_along_the_longer_spread)
+{
+    static bp_fixture f;
+    int n = 60, i, layout;
+    fixture_init(&f, n);
+    f.bp.sweep_max = N_MAX;
+    for (layout = 0; layout < 3; ++layout) {
+        for (i = 0; i < n; ++i) {
+            /* boxes 1 m wide, touching their neighbours (pairs i, i + 1) */
+            float along = (float)i, across = 0.01f * (float)(i % 3);
+            float x = layout == 1 ? along : across, y = layout == 1 ? across : along;
+            f.boxes[i].lo_x = x - 0.5f;
+            f.boxes[i].hi_x = x + 0.5f;
+            f.boxes[i].lo_y = y - 0.5f;
+            f.boxes[i].hi_y = y + 0.5f;
+            f.is_static[i] = 0;
+        }
+        check_against_all_pairs(&f, n);
+#if CAROM_ENABLE_GRID
+        ck_assert_int_eq(f.bp.sweep, 1);
+        ck_assert_int_eq(f.bp.sweep_axis, layout == 1 ? 0 : 1);
+#endif
+    }
+}
+END_TEST
+
+/* A query of the sweep gives the bodies in slot order, as the build
+ * without the grid does (callers that act on each body in turn then act
+ * in the same order in both builds). */
+START_TEST(test_sweep_query_gives_bodies_in_slot_order)
+{
+    static bp_fixture f;
+    static q_ctx q;
+    cr_box all;
+    int n = 100, i, expected = 0;
+    fixture_init(&f, n);
+    f.bp.sweep_max = N_MAX;
+    random_boxes(&f, n, 2024u, 5.0f, 0.05f, 0.5f);
+    cr_broadphase_build(&f.bp, f.boxes, f.bodies, n);
+    all.lo_x = -2.0f; all.hi_x = 3.0f; all.lo_y = -1.0f; all.hi_y = 2.0f;
+    memset(&q, 0, sizeof q);
+    ck_assert_int_eq(cr_broadphase_query(&f.bp, f.boxes, &all, record, &q), 1);
+    for (i = 0; i < n; ++i)
+        if (box_overlap(&f.boxes[i], &all))
+            ck_assert_int_eq(q.seen[expected++], i);
+    ck_assert_int_eq(q.count, expected);
+    ck_assert_int_ge(expected, 5);
+}
+END_TEST
+
+/* A world of 100 bodies (circles and boxes falling into a box of walls,
+ * some of them bouncing, some spinning) sweeps; the same world with the
+ * sweep turned off fills the grid. Both methods: every body's state the
+ * same bits after 2 s, for the pairs are the same and sorted alike. */
+static tw sweep_world(carom_method method, int sweep_max)
+{
+    carom_world_def wd = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    tw t;
+    unsigned seed = 555u;
+    int i;
+    wd.method = method;
+    wd.max_bodies = 104;
+    t = tw_make(&wd);
+    t.w->bp.sweep_max = sweep_max;
+    bd.type = CAROM_BODY_STATIC;
+    bd.shape = CAROM_SHAPE_POLYGON;
+    bd.vertex_count = 4;
+    for (i = 0; i < 4; ++i) {
+        /* floor, ceiling, left and right walls of a 6 m box */
+        float hx = i < 2 ? 3.2f : 0.2f, hy = i < 2 ? 0.2f : 3.2f;
+        bd.vertices[0] = (carom_vec2){-hx, -hy};
+        bd.vertices[1] = (carom_vec2){hx, -hy};
+        bd.vertices[2] = (carom_vec2){hx, hy};
+        bd.vertices[3] = (carom_vec2){-hx, hy};
+        bd.position = i < 2 ? (carom_vec2){0.0f, i == 0 ? -3.0f : 3.0f}
+                            : (carom_vec2){i == 2 ? -3.0f : 3.0f, 0.0f};
+        tw_add(&t, &bd);
+    }
+    bd.type = CAROM_BODY_DYNAMIC;
+    for (i = 0; i < 100; ++i) {
+        bd.shape = i % 2 ? CAROM_SHAPE_CIRCLE : CAROM_SHAPE_POLYGON;
+        bd.radius = uniform(&seed, 0.1f, 0.2f);
+        bd.vertices[0] = (carom_vec2){-0.15f, -0.1f};
+        bd.vertices[1] = (carom_vec2){0.15f, -0.1f};
+        bd.vertices[2] = (carom_vec2){0.15f, 0.1f};
+        bd.vertices[3] = (carom_vec2){-0.15f, 0.1f};
+        bd.position = (carom_vec2){-2.5f + 0.5f * (float)(i % 10), -2.4f + 0.5f * (float)(i / 10)};
+        bd.velocity = (carom_vec2){uniform(&seed, -2.0f, 2.0f), uniform(&seed, -2.0f, 2.0f)};
+        bd.angular_velocity = uniform(&seed, -3.0f, 3.0f);
+        bd.restitution = i % 3 == 0 ? 0.8f : 0.0f;
+        tw_add(&t, &bd);
+    }
+    return t;
+}
+
+START_TEST(test_world_sweep_and_grid_give_the_same_bits)
+{
+    int m, i;
+    for (m = 0; m < 2; ++m) {
+        carom_method method = m ? CAROM_METHOD_DISCRETE : CAROM_METHOD_EVENTS;
+        tw a = sweep_world(method, CR_SWEEP_MAX), b = sweep_world(method, 0);
+        tw_steps(&a, 120);
+        tw_steps(&b, 120);
+#if CAROM_ENABLE_GRID
+        ck_assert_int_eq(a.w->bp.sweep, 1);
+        ck_assert_int_eq(b.w->bp.sweep, 0);
+#endif
+        for (i = 0; i < 104; ++i) {
+            carom_body_state sa = tw_state(&a, i), sb = tw_state(&b, i);
+            ck_assert_msg(memcmp(&sa, &sb, sizeof sa) == 0, "method %d: body %d differs", m, i);
+        }
+        tw_free(&a);
+        tw_free(&b);
+    }
+}
+END_TEST
+
 /* Through the world: a pile denser than the default pair capacity fails
  * with CAROM_ERR_PAIR_CAPACITY and leaves the world as it was. */
 START_TEST(test_world_pair_capacity_is_a_clean_failure)
@@ -459,6 +661,12 @@ Suite *suite_broadphase(void)
     tcase_add_test(tc, test_grid_handles_no_bodies_and_point_boxes);
     tcase_add_test(tc, test_grid_clamps_cells_beyond_its_range_on_both_sides);
     tcase_add_test(tc, test_query_gives_every_overlapping_body_once_and_stops_on_request);
+    suite_add_tcase(s, tc);
+    tc = tcase_create("sweep");
+    tcase_add_test(tc, test_sweep_equals_all_pairs_as_boxes_move_and_bodies_come_and_go);
+    tcase_add_test(tc, test_sweep_runs_along_the_longer_spread);
+    tcase_add_test(tc, test_sweep_query_gives_bodies_in_slot_order);
+    tcase_add_test(tc, test_world_sweep_and_grid_give_the_same_bits);
     suite_add_tcase(s, tc);
     return s;
 }
