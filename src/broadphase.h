@@ -71,7 +71,10 @@ typedef struct cr_broadphase {
 /* Memory: bytes of each array for `capacity` bodies (world layout). */
 int cr_broadphase_bucket_cap(int capacity);
 
-/* Put the boxes of bodies[0..n) into the grid. */
+/* Put the boxes of bodies[0..n) into the grid (or, for at most sweep_max
+ * of them, sort them for the sweep). The bodies come in increasing slots,
+ * as the step lists them: the pairs of the build without the grid come
+ * sorted so, and the sweep's queries keep that order. */
 void cr_broadphase_build(cr_broadphase *bp, const cr_box *boxes,
                          const int *bodies, int n);
 
