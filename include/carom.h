@@ -690,6 +690,10 @@ typedef struct carom_stats {
                                 takes the same path to the last bit) */
     int awake_bodies;    /**< bodies simulated in the last step */
     int contacts;        /**< contacts in the last step */
+    int substeps;        /**< substeps the last step took: the tolerances'
+                              count, or more where resting contacts join
+                              bodies of unlike masses
+                              (CAROM_SUBSTEP_MASS_RATIO) */
     int grows;           /**< times a step took a larger pool from
                               carom_world_def.grow */
 } carom_stats;

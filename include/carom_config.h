@@ -336,6 +336,19 @@
                                            slop sets the substep count */
 #endif
 
+#ifndef CAROM_SUBSTEP_MASS_RATIO
+#define CAROM_SUBSTEP_MASS_RATIO 2.0f /**< a step whose resting contacts
+                                           join dynamic bodies of masses R >
+                                           this apart (other than the
+                                           supports shock propagation
+                                           holds) lets a body fall only
+                                           1 / sqrt(R) as far per substep:
+                                           up to max_substeps where a heavy
+                                           body leans on light ones (ball
+                                           pits of mixed densities;
+                                           docs/physics.md) */
+#endif
+
 #ifndef CAROM_DEFAULT_ITERATIONS
 #define CAROM_DEFAULT_ITERATIONS 1 /**< contact sweeps per substep */
 #endif

@@ -765,6 +765,102 @@ START_TEST(test_substeps_grow_where_gravity_outruns_the_slop)
 END_TEST
 
 /*
+ * Substeps for unlike masses (world.c, cr_substeps_mixed): a step whose
+ * resting contacts join dynamic bodies of masses R > CAROM_SUBSTEP_MASS_
+ * RATIO apart, none of them a shock support, takes
+ * n = ceil(dt sqrt(|g| sqrt(R) / (2 f s))). Computed here in double for
+ * a ball of density D in the notch between two unit-density balls of the
+ * same radius 1 (contacts 30 degrees off the vertical), held apart by
+ * static walls on a static floor: R = D, L = 1. dt 1/20 under 10 m/s^2:
+ * q = 3.54 without the rule (4 substeps, the default).
+ */
+static int notch_substeps(float density, int box_column, int max_substeps)
+{
+    carom_world_def d = carom_default_world_def();
+    carom_body_def bd = carom_default_body_def();
+    carom_stats st;
+    tw t;
+    d.dt = 0.05f;
+    d.max_bodies = 6;
+    d.max_substeps = max_substeps;
+    d.enable_sleep = 0;
+    t = tw_make(&d);
+    bd.type = CAROM_BODY_STATIC;
+    ck_assert_int_eq(carom_body_def_set_box(&bd, 5.0f, 0.5f), CAROM_OK);
+    bd.position.y = -0.5f;
+    tw_add(&t, &bd);
+    ck_assert_int_eq(carom_body_def_set_box(&bd, 0.5f, 5.0f), CAROM_OK);
+    bd.position.x = -2.5f;
+    bd.position.y = 5.0f;
+    tw_add(&t, &bd);
+    bd.position.x = 2.5f;
+    tw_add(&t, &bd);
+    bd = carom_default_body_def();
+    if (box_column) {
+        /* a light box under a heavy one: a face on a face, which shock
+         * propagation holds (the rule leaves it alone) */
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 1.0f, 1.0f), CAROM_OK);
+        bd.position.y = 1.0f;
+        tw_add(&t, &bd);
+        bd.position.y = 3.0f;
+        bd.density = density;
+        tw_add(&t, &bd);
+    } else {
+        bd.radius = 1.0f;
+        bd.position.x = -1.0f;
+        bd.position.y = 1.0f;
+        tw_add(&t, &bd);
+        bd.position.x = 1.0f;
+        tw_add(&t, &bd);
+        bd.position.x = 0.0f;
+        bd.position.y = (float)(1.0 + sqrt(3.0));
+        bd.density = density;
+        tw_add(&t, &bd);
+    }
+    tw_steps(&t, 10);
+    ck_assert_int_eq(carom_world_get_stats(t.w, &st), CAROM_OK);
+    tw_free(&t);
+    return st.substeps;
+}
+
+static int want_mixed_substeps(double ratio, int max_substeps)
+{
+    double q = 0.05 * sqrt(10.0 * (ratio > CAROM_SUBSTEP_MASS_RATIO ? sqrt(ratio) : 1.0) /
+                           (2.0 * CAROM_SUBSTEP_FALL_SLOPS * CAROM_SLOP_PER_LENGTH * 1.0));
+    int n = (int)ceil(q), cap = max_substeps > 0 ? max_substeps : CAROM_DEFAULT_MAX_SUBSTEPS;
+    return n < CAROM_DEFAULT_SUBSTEPS ? CAROM_DEFAULT_SUBSTEPS : n > cap ? cap : n;
+}
+
+START_TEST(test_substeps_grow_where_a_heavy_body_leans_on_light_ones)
+{
+    static const struct {
+        float density;
+        int max_substeps;
+    } c[] = {
+        {1.0f, 0},    /* like masses: 4 */
+        {1.5f, 0},    /* within CAROM_SUBSTEP_MASS_RATIO: 4 */
+        {16.0f, 0},   /* q 7.07: 8 */
+        {81.0f, 0},   /* q 10.6: 11 */
+        {1000.0f, 0}, /* q 19.9: the default cap, 16 */
+        {1000.0f, 64}, /* 20 */
+        {1000.0f, 4}, /* fixed at 4 */
+    };
+    size_t i;
+    ck_assert_int_eq(want_mixed_substeps(16.0, 0), 8);
+    ck_assert_int_eq(want_mixed_substeps(81.0, 0), 11);
+    for (i = 0; i < sizeof c / sizeof c[0]; ++i) {
+        int want = want_mixed_substeps(c[i].density, c[i].max_substeps);
+        int got = notch_substeps(c[i].density, 0, c[i].max_substeps);
+        ck_assert_msg(got == want, "case %d: %d substeps, want %d", (int)i, got, want);
+    }
+#if CAROM_ENABLE_STACKING
+    /* a heavy box on a light one is shock propagation's: 4 */
+    ck_assert_int_eq(notch_substeps(1000.0f, 1, 0), CAROM_DEFAULT_SUBSTEPS);
+#endif
+}
+END_TEST
+
+/*
  * 200 circles of radius 2 cm poured in a column 10 wide (2.5 radii apart,
  * from 2 radii up) into a static box, under 10 m/s^2 at dt 1/60, 2 s:
  * the pile they make. With a fixed 4 substeps gravity moved a body 4.3
@@ -988,6 +1084,7 @@ Suite *suite_world(void)
     Suite *s = suite_create("world");
     TCase *tc = tcase_create("api");
     tcase_add_test(tc, test_tolerances_follow_the_bodies_and_the_definition);
+    tcase_add_test(tc, test_substeps_grow_where_a_heavy_body_leans_on_light_ones);
 #if TOUCHES
     tcase_add_test(tc, test_release_keeps_touches_or_says_it_dropped_them);
 #endif
