@@ -259,10 +259,15 @@ typedef struct carom_world_def {
                                    CAROM_SLOP_PER_LENGTH L))), L the length
                                    unit (small bodies, long steps: a pile
                                    of 1 cm bodies under 10 m/s^2 at
-                                   dt 1/60 takes 12). At or below
+                                   dt 1/60 takes 12); and where resting
+                                   contacts join dynamic bodies of masses
+                                   R > CAROM_SUBSTEP_MASS_RATIO apart
+                                   (other than shock supports), with
+                                   |g| sqrt(R) for |g|. At or below
                                    `substeps`: always `substeps`.
                                    carom_world_get_tolerances() reports the
-                                   count */
+                                   count of the first rule;
+                                   carom_stats.substeps the last step's */
     int iterations;           /**< contact sweeps per substep, 1..64;
                                    default 1 */
     int relax_iterations;     /**< relaxing sweeps per substep, 0..64;
