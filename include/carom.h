@@ -259,11 +259,10 @@ typedef struct carom_world_def {
                                    CAROM_SLOP_PER_LENGTH L))), L the length
                                    unit (small bodies, long steps: a pile
                                    of 1 cm bodies under 10 m/s^2 at
-                                   dt 1/60 takes 12); and where resting
+                                   dt 1/60 takes 12); and where touching
                                    contacts join dynamic bodies of masses
-                                   R > CAROM_SUBSTEP_MASS_RATIO apart
-                                   (other than shock supports), with
-                                   |g| sqrt(R) for |g|. At or below
+                                   R > CAROM_SUBSTEP_MASS_RATIO apart,
+                                   with |g| R for |g|. At or below
                                    `substeps`: always `substeps`.
                                    carom_world_get_tolerances() reports the
                                    count of the first rule;
@@ -696,7 +695,7 @@ typedef struct carom_stats {
     int awake_bodies;    /**< bodies simulated in the last step */
     int contacts;        /**< contacts in the last step */
     int substeps;        /**< substeps the last step took: the tolerances'
-                              count, or more where resting contacts join
+                              count, or more where touching contacts join
                               bodies of unlike masses
                               (CAROM_SUBSTEP_MASS_RATIO) */
     int grows;           /**< times a step took a larger pool from

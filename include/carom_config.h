@@ -337,15 +337,13 @@
 #endif
 
 #ifndef CAROM_SUBSTEP_MASS_RATIO
-#define CAROM_SUBSTEP_MASS_RATIO 2.0f /**< a step whose resting contacts
+#define CAROM_SUBSTEP_MASS_RATIO 2.0f /**< a step whose touching contacts
                                            join dynamic bodies of masses R >
-                                           this apart (other than the
-                                           supports shock propagation
-                                           holds) lets a body fall only
-                                           1 / sqrt(R) as far per substep:
-                                           up to max_substeps where a heavy
-                                           body leans on light ones (ball
-                                           pits of mixed densities;
+                                           this apart lets a body fall only
+                                           1 / R as far per substep: up to
+                                           max_substeps where heavy bodies
+                                           rest on light ones (stacks and
+                                           ball pits of mixed densities;
                                            docs/physics.md) */
 #endif
 

@@ -389,6 +389,7 @@ carom_status carom_world_init(carom_world **out, const carom_world_def *def,
     w->contact_count = 0;
     w->turning_contacts = 0;
     w->warm_count = 0;
+    w->warm_h = 0.0f;
     w->sbody = CR_AT(sbody, cr_solver_body);
     w->solve_count = 0;
     w->support = CR_AT(support, int);
@@ -556,35 +557,31 @@ static int cr_substeps_for(const carom_world *w, float length)
 }
 
 /*
- * Substeps for unlike masses. Where a heavy body leans on a light one, the
- * sweeps stop the heavy body's fall only slowly: Gauss-Seidel takes about
- * m_heavy / m_light sweeps to carry its weight through the light body,
- * and in the meantime the heavy body sinks by a part of g h^2 in every
- * substep. Shock propagation (solver.c) holds a heavy body up on the
- * supports it walks, a column's level points and faces; a heavy ball in
- * the notch between light ones in a ball pit is on none of them, and ball
- * pits of densities 0.1 to 10 ended with light balls crushed 10 to 50 %
- * of their radius into their neighbours (docs/robustness.md, "More random
- * families"). So a step whose resting contacts join two dynamic bodies of
- * masses R > CAROM_SUBSTEP_MASS_RATIO apart, none of them a shock
- * support, lets a body fall only 1 / sqrt(R) of the usual slop per
- * substep: n = ceil(dt sqrt(|g| sqrt(R) / (2 f s))), at most the cap.
- * sqrt(R) is measured, not derived: on 40 ball pits, R^(1/4) passed 29
- * and 32 of 40 (discrete, events), sqrt(R) 35 and 38, R 36 and 37 at a
- * third more time (the cap), against 22 and 24 without. Returns 0 where
- * nothing asks for more (no gravity, no such contact).
+ * Substeps for unlike masses. Where a heavy body rests on a light one, the
+ * sweeps carry its weight through the light body only slowly: Gauss-Seidel
+ * takes about m_heavy / m_light sweeps to do it, and the warm start
+ * carries what is left over from substep to substep, so an error of the
+ * light body's (its fall under the load, its tilt, its slip) grows with
+ * g h^2 m_heavy / m_light. Shock propagation (solver.c) holds a column
+ * up, but not a heavy ball in the notch between light ones, nor the light
+ * box's rocking and slipping between heavy ones in a stack of mixed
+ * densities. So a step whose touching contacts join two dynamic bodies of
+ * masses R > CAROM_SUBSTEP_MASS_RATIO apart lets a body fall only 1 / R
+ * of the usual slop per substep: n = ceil(dt sqrt(|g| R / (2 f s))), at
+ * most the cap (docs/physics.md, "Unlike masses leaning on each other":
+ * ball pits of densities 0.1 to 10 and stacks of mixed densities).
+ * Returns 0 where nothing asks for more (no gravity, no such contact).
  */
 static int cr_substeps_mixed(const carom_world *w)
 {
     float ratio = CAROM_SUBSTEP_MASS_RATIO, g = cr_vlen(w->def.gravity);
-    const unsigned shock = CR_CONTACT_SHOCK_A | CR_CONTACT_SHOCK_B;
     int i, cap = w->def.max_substeps > 0 ? w->def.max_substeps : CAROM_DEFAULT_MAX_SUBSTEPS;
     if (cap <= w->scale.substeps || cr_eq(g, 0.0f))
         return 0;
     for (i = 0; i < w->contact_count; ++i) {
         const cr_contact *c = &w->contacts[i];
         float a, b;
-        if ((c->flags & (CR_CONTACT_RESTING | shock)) != CR_CONTACT_RESTING)
+        if (!(c->flags & CR_CONTACT_TOUCHING))
             continue;
         a = w->bodies[c->a].inv_m;
         b = w->bodies[c->b].inv_m;
@@ -599,7 +596,7 @@ static int cr_substeps_mixed(const carom_world *w)
         return 0;
     return cr_substeps_of_q(
         w, cr_mul(w->def.dt,
-                  cr_sqrt(cr_div(cr_mul(g, cr_sqrt(ratio)), cr_substep_fall(w->scale.length)))));
+                  cr_sqrt(cr_div(cr_mul(g, ratio), cr_substep_fall(w->scale.length)))));
 }
 
 /* The tolerances of this step (carom_config.h: scale). */
@@ -940,6 +937,28 @@ static int cr_prime_sweeps(const carom_world *w)
     return 0;
 }
 
+/* The warm start's impulses are per substep (at rest, the weight times
+ * h): a step of another substep length than the one that stored them
+ * takes them scaled by h / h_then. (Without it, a step with 16 substeps
+ * after one of 4 started every resting contact at 4 times its load: a
+ * light box under one 100 times heavier, both sliding down a slope,
+ * slid 2 % short of the Coulomb rate instead of 0.1 %.) */
+static void cr_warm_rescale(carom_world *w, float h)
+{
+    float f;
+    int i, k;
+    if (!cr_gt(w->warm_h, 0.0f) || cr_eq(w->warm_h, h))
+        return;
+    f = cr_div(h, w->warm_h);
+    for (i = 0; i < w->contact_count; ++i) {
+        cr_contact *c = &w->contacts[i];
+        for (k = 0; k < c->count; ++k) {
+            c->pts[k].pn = cr_mul(f, c->pts[k].pn);
+            c->pts[k].pt = cr_mul(f, c->pts[k].pt);
+        }
+    }
+}
+
 static carom_status cr_step(carom_world *w)
 {
     int n, k, prime;
@@ -988,6 +1007,7 @@ static carom_status cr_step(carom_world *w)
         h = cr_div(dt, (float)n);
     }
     w->stats.substeps = n;
+    cr_warm_rescale(w, h);
     cr_substep_init(&sub, w, h);
     prime = cr_prime_sweeps(w);
     if (prime > 0)
@@ -1082,6 +1102,7 @@ static carom_status cr_step(carom_world *w)
         return CAROM_ERR_PAIR_CAPACITY;
     CR_PHASE(w, CAROM_PHASE_RESTING);
     cr_contacts_store(w);
+    w->warm_h = h;
     cr_island_sleep(w, dt);
     if (w->prime) {
         int i;

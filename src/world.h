@@ -137,6 +137,8 @@ struct carom_world {
     cr_warm *warm;            /* impulses of the last step (cr_contacts_store
                                  overwrites them at the end of this one) */
     int warm_count;
+    float warm_h;             /* the substep those impulses were for: each is
+                                 an impulse per substep (0: not yet) */
     cr_solver_body *sbody;
     int *active;              /* bodies the solver takes this substep */
     int active_count;

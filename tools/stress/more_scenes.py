@@ -31,6 +31,14 @@ hopper    30 to 120 circles, boxes (aspect up to 20) and 3- to 8-gons of
           from the top of a closed bin onto two slanted static ramps; dt
           1/30 to 1/120 for 10 s. Pass: every centre inside the bin, worst
           overlap at most a quarter of the body size.
+mstack    2 to 12 boxes of widths 0.5 to 2 and heights 0.3 to 1 times a
+          base size, densities 0.1 to 10 each, stacked at rest, each off
+          the centre of the one below by up to a tenth of its width, one
+          friction 0.4 to 1; dt 1/30 to 1/240 for 10 s. Every stack is
+          statically stable (the load above each face has its centre well
+          inside it). Pass: every box ends within a tenth of its
+          half-height of its start. Drawn only when FAMS names it, so that
+          the first four keep their seeds.
 """
 import math
 import os
@@ -196,7 +204,32 @@ def hopper(r, name):
     return sc, dict(s=s, n=n, size=size, W=W, wall=wall, ang=ang, dt=dk)
 
 
+def mstack(r, name):
+    s = 10 ** r.uniform(-2, 2)
+    k = r.randint(2, 12)
+    dk, steps = r.choice(DTS)
+    sc = g.Scene(name, "mstack", ["mixed stack"])
+    sc.world = "gravity=%s dt=%s steps=%d" % (vec(0, -10.0 * s), num(1.0 / dk), steps)
+    sc.bodies.append("box static half-extents=%s position=%s" % (
+        vec(50 * s, 0.5 * s), vec(0, -0.5 * s)))
+    y = 0.0
+    fr = r.uniform(0.4, 1.0)
+    base = r.uniform(0.3, 1.0)
+    for i in range(k):
+        hx = base * r.uniform(0.5, 2.0)
+        hy = base * r.uniform(0.3, 1.0)
+        rho = 10 ** r.uniform(-1, 1)
+        off = r.uniform(-0.1, 0.1) * hx
+        y += hy
+        sc.bodies.append("box half-extents=%s position=%s density=%s friction=%s" % (
+            vec(hx * s, hy * s), vec(off * s, y * s), num(rho), num(fr)))
+        y += hy
+        sc.checks.append("stay body=%d tol=%s" % (i + 1, num(0.1 * hy * s)))
+    return sc, dict(s=s, k=k, base=base, fr=fr, dt=dk)
+
+
 FAM = [hstack, fastdrop, ballpit, hopper]
+EXTRA = [mstack]  # only when FAMS names them
 
 
 def main():
@@ -210,10 +243,10 @@ def main():
         return 2
     out = sys.argv[3]
     names = os.environ.get("FAMS")
-    fams = FAM if not names else [f for f in FAM if f.__name__ in names.split(",")]
+    fams = FAM if not names else [f for f in FAM + EXTRA if f.__name__ in names.split(",")]
     if not fams:
-        print("more_scenes.py: FAMS names no family of %s" % ",".join(f.__name__ for f in FAM),
-              file=sys.stderr)
+        print("more_scenes.py: FAMS names no family of %s" % ",".join(
+            f.__name__ for f in FAM + EXTRA), file=sys.stderr)
         return 2
     os.makedirs(out, exist_ok=True)
     for seed in range(start, start + count):
