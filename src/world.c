@@ -509,21 +509,6 @@ carom_method carom_world_get_method(const carom_world *w)
 
 /* ---- the step ------------------------------------------------------------------ */
 
-/*
- * Substeps of a step. The contact solver takes a body's weight off it once
- * a substep; in between, gravity moves it g h^2 / 2 from rest, and in a
- * deep pile the sweeps do not take all of it back before the next substep
- * adds more. While that fall stays within a slop of the length unit the
- * default 4 substeps hold a 500-body pour to 2 mm (dt 1/60, bodies 0.2 m
- * across: 0.8 slop); twice as far per substep (dt 1/40) it ended 17 mm
- * deep, at dt 1/30 130 mm, and bodies 6 cm across under the same gravity
- * sank 44 mm into each other at dt 1/60 (docs/physics.md, "Small bodies
- * and long steps"). So a step takes
- * n = ceil(dt sqrt(|g| / (2 f s))) substeps, s the slop of the length
- * unit and f CAROM_SUBSTEP_FALL_SLOPS, at least def.substeps and at most
- * def.max_substeps. A dimensionless rule (g h^2 / L): a scene scaled
- * with its gravity keeps its count.
- */
 /* The substeps for q = dt sqrt(|g| / fall) (the fall allowed per
  * substep): at least def.substeps, at most the cap. */
 static int cr_substeps_of_q(const carom_world *w, float q)
@@ -547,6 +532,21 @@ static float cr_substep_fall(float length)
     return cr_mul(cr_mul(2.0f, CAROM_SUBSTEP_FALL_SLOPS), cr_mul(CAROM_SLOP_PER_LENGTH, length));
 }
 
+/*
+ * Substeps of a step. The contact solver takes a body's weight off it once
+ * a substep; in between, gravity moves it g h^2 / 2 from rest, and in a
+ * deep pile the sweeps do not take all of it back before the next substep
+ * adds more. While that fall stays within a slop of the length unit the
+ * default 4 substeps hold a 500-body pour to 2 mm (dt 1/60, bodies 0.2 m
+ * across: 0.8 slop); twice as far per substep (dt 1/40) it ended 17 mm
+ * deep, at dt 1/30 130 mm, and bodies 6 cm across under the same gravity
+ * sank 44 mm into each other at dt 1/60 (docs/physics.md, "Small bodies
+ * and long steps"). So a step takes
+ * n = ceil(dt sqrt(|g| / (2 f s))) substeps, s the slop of the length
+ * unit and f CAROM_SUBSTEP_FALL_SLOPS, at least def.substeps and at most
+ * def.max_substeps. A dimensionless rule (g h^2 / L): a scene scaled
+ * with its gravity keeps its count.
+ */
 static int cr_substeps_for(const carom_world *w, float length)
 {
     int cap = w->def.max_substeps > 0 ? w->def.max_substeps : CAROM_DEFAULT_MAX_SUBSTEPS;
@@ -939,10 +939,12 @@ static int cr_prime_sweeps(const carom_world *w)
 
 /* The warm start's impulses are per substep (at rest, the weight times
  * h): a step of another substep length than the one that stored them
- * takes them scaled by h / h_then. (Without it, a step with 16 substeps
- * after one of 4 started every resting contact at 4 times its load: a
- * light box under one 100 times heavier, both sliding down a slope,
- * slid 2 % short of the Coulomb rate instead of 0.1 %.) */
+ * takes them scaled by h / h_then, as Jolt scales its warm start by the
+ * ratio of the steps. Without it a step with 5 substeps after one of 14
+ * would start every resting contact at 5/14 of its load. The sweeps take
+ * that back within the step where the masses are alike
+ * (test_stack_holds_when_the_substep_count_changes passes either way);
+ * between unlike masses they take it back slowly. */
 static void cr_warm_rescale(carom_world *w, float h)
 {
     float f;

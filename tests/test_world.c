@@ -765,6 +765,68 @@ START_TEST(test_substeps_grow_where_gravity_outruns_the_slop)
 END_TEST
 
 /*
+ * A step's substep count changes with the bodies (the length unit) and the
+ * masses in contact, and the warm start's impulses, which are per
+ * substep, are rescaled with it (world.c, cr_warm_rescale). A column of
+ * five 4 cm boxes, densities 1 and 3 in turn, at rest on a floor at
+ * dt 1/60 takes 14 substeps (its length unit is 2.3 cm, and masses 3
+ * apart touch); a 2 m box added 10 m away makes the length unit 21 cm and
+ * the count 5. The column must not notice: over the next 30 steps its
+ * top box stays within a hundredth of a slop of where it was.
+ */
+START_TEST(test_stack_holds_when_the_substep_count_changes)
+{
+    static const carom_method methods[2] = {CAROM_METHOD_EVENTS, CAROM_METHOD_DISCRETE};
+    int m, i;
+    for (m = 0; m < 2; ++m) {
+        carom_world_def d = carom_default_world_def();
+        carom_body_def bd = carom_default_body_def();
+        carom_tolerances tol;
+        carom_stats before, after;
+        float y0;
+        double worst = 0.0;
+        int top = 0;
+        tw t;
+        d.method = methods[m];
+        d.enable_sleep = 0;
+        d.max_bodies = 8;
+        t = tw_make(&d);
+        bd.type = CAROM_BODY_STATIC;
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 20.0f, 0.5f), CAROM_OK);
+        bd.position.y = -0.5f;
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 0.02f, 0.02f), CAROM_OK);
+        for (i = 0; i < 5; ++i) {
+            bd.position.y = 0.02f + 0.04f * (float)i;
+            bd.density = (i & 1) ? 3.0f : 1.0f;
+            top = tw_add(&t, &bd);
+        }
+        tw_steps(&t, 120);
+        ck_assert_int_eq(carom_world_get_stats(t.w, &before), CAROM_OK);
+        y0 = tw_state(&t, top).position.y;
+        ck_assert_int_eq(carom_body_def_set_box(&bd, 1.0f, 1.0f), CAROM_OK);
+        bd.density = 1.0f;
+        bd.position.x = 10.0f;
+        bd.position.y = 1.0f;
+        tw_add(&t, &bd);
+        for (i = 0; i < 30; ++i) {
+            tw_steps(&t, 1);
+            worst = fmax(worst, fabs((double)tw_state(&t, top).position.y - y0));
+        }
+        ck_assert_int_eq(carom_world_get_stats(t.w, &after), CAROM_OK);
+        ck_assert_int_eq(carom_world_get_tolerances(t.w, &tol), CAROM_OK);
+        ck_assert_msg(before.substeps > after.substeps, "%d -> %d substeps", before.substeps,
+                      after.substeps);
+        ck_assert_msg(worst < 0.01 * (double)tol.linear_slop,
+                      "%s: the top box moved %g m (slop %g)", carom_method_name(methods[m]),
+                      worst, (double)tol.linear_slop);
+        tw_free(&t);
+    }
+}
+END_TEST
+
+/*
  * Substeps for unlike masses (world.c, cr_substeps_mixed): a step whose
  * resting contacts join dynamic bodies of masses R > CAROM_SUBSTEP_MASS_
  * RATIO apart takes n = ceil(dt sqrt(|g| R / (2 f s))). Computed here in
@@ -1091,6 +1153,7 @@ Suite *suite_world(void)
     TCase *tc = tcase_create("api");
     tcase_add_test(tc, test_tolerances_follow_the_bodies_and_the_definition);
     tcase_add_test(tc, test_substeps_grow_where_a_heavy_body_leans_on_light_ones);
+    tcase_add_test(tc, test_stack_holds_when_the_substep_count_changes);
 #if TOUCHES
     tcase_add_test(tc, test_release_keeps_touches_or_says_it_dropped_them);
 #endif
