@@ -372,6 +372,47 @@ def mixed_pour(seed=31094):
     return sc
 
 
+def more_scene(fam, seed, name, family, desc):
+    """A scene of tools/stress/more_scenes.py kept as a regression scene."""
+    import random
+    import more_scenes as ms
+    sc, info = getattr(ms, fam)(random.Random(seed), name)
+    sc.family = family
+    sc.desc = desc(info)
+    return sc
+
+
+def ballpit_mixed(seed=80114):
+    """A ball pit of more_scenes.py (its seed 80114): a light ball under
+    heavier ones was crushed 0.2 m deep, three times the criterion, before
+    the substeps for unlike masses (docs/physics.md, "Unlike masses leaning
+    on each other")."""
+    def desc(info):
+        return [
+            "more_scenes.py's ball pit of seed %d: %d circles of radius %s to %s m,"
+            % (seed, info["n"], num(info["rmin"] * info["s"]), num(info["rmax"] * info["s"])),
+            "densities 0.1 to 10, thrown into a closed bin %s m wide, 10 s at"
+            % num(2 * info["inner"] * info["s"]),
+            "dt = 1/%d. Pass: the worst overlap at most a tenth of the smallest"
+            % info["dt"],
+            "radius, every centre inside the bin."]
+    return more_scene("ballpit", seed, "ballpit-mixed", "pour", desc)
+
+
+def stack_mixed(seed=90029):
+    """A stack of more_scenes.py's mstack family (its seed 90029), statically
+    stable, which toppled before the substeps for unlike masses."""
+    def desc(info):
+        return [
+            "more_scenes.py's mixed stack of seed %d: %d boxes of their own"
+            % (seed, info["k"]),
+            "widths, heights and densities (0.1 to 10), each off the one below",
+            "by up to a tenth of its width, friction %s, 10 s at dt = 1/%d."
+            % (num(info["fr"]), info["dt"]),
+            "Pass: every box ends within a tenth of its half-height of its start."]
+    return more_scene("mstack", seed, "stack-mixed", "stack", desc)
+
+
 def all_scenes():
     scenes = []
     for h in (10, 20, 40):
@@ -387,6 +428,8 @@ def all_scenes():
     scenes.append(pour(dtk=30, plot=False))
     scenes.append(pour(0.3, plot=False, real_g=True))
     scenes.append(mixed_pour())
+    scenes.append(ballpit_mixed())
+    scenes.append(stack_mixed())
     for r in (10, 100, 1000):
         scenes.append(heavy_on_light(r))
     for hx in (1.0, 2.5, 5.0):
@@ -403,7 +446,8 @@ def all_scenes():
     scenes.append(pi_billiard())
     scenes.append(pi_billiard(circles=True))
     fast = {"stack-h10-x7.77-dt60", "heavy-on-light-m100", "rod-l5-tilt80",
-            "pyramid-b20", "stack-h10-x0-dt60-s100", "pour-mixed-dt30"}
+            "pyramid-b20", "stack-h10-x0-dt60-s100", "pour-mixed-dt30",
+            "ballpit-mixed", "stack-mixed"}
     for sc in scenes:
         sc.fast = sc.name in fast
     names = [sc.name for sc in scenes]
