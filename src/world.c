@@ -963,7 +963,7 @@ static void cr_warm_rescale(carom_world *w, float h)
 
 static carom_status cr_step(carom_world *w)
 {
-    int n, k, prime;
+    int n, k, prime, mixed;
     float dt = w->def.dt, h;
     int events = CAROM_ENABLE_EVENTS &&
                  (!CAROM_ENABLE_DISCRETE || w->method != CAROM_METHOD_DISCRETE);
@@ -1003,9 +1003,9 @@ static carom_status cr_step(carom_world *w)
     CR_PHASE(w, CAROM_PHASE_INTEGRATION);
     cr_solver_begin(w);
     cr_solver_levels(w);
-    k = cr_substeps_mixed(w);
-    if (k > n) {
-        n = k;
+    mixed = cr_substeps_mixed(w);
+    if (mixed > n) {
+        n = mixed;
         h = cr_div(dt, (float)n);
     }
     w->stats.substeps = n;
