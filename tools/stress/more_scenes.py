@@ -39,6 +39,13 @@ mstack    2 to 12 boxes of widths 0.5 to 2 and heights 0.3 to 1 times a
           inside it). Pass: every box ends within a tenth of its
           half-height of its start. Drawn only when FAMS names it, so that
           the first four keep their seeds.
+tower     10 to 30 boxes of one size (1 to 4 times as tall as wide), each
+          off the one below by up to a tenth of its width, statically
+          stable with a margin (the centre of the load above each face at
+          least a tenth of the box width inside the face), one friction 0.4
+          to 1, sleeping off; dt 1/60 or 1/120 for 20 s. Pass: every box ends
+          within half its half-width of its start. Drawn only when FAMS names
+          it.
 """
 import math
 import os
@@ -228,8 +235,37 @@ def mstack(r, name):
     return sc, dict(s=s, k=k, base=base, fr=fr, dt=dk)
 
 
+def tower(r, name):
+    s = 10 ** r.uniform(-2, 2)
+    k = r.randint(10, 30)
+    dk, steps = r.choice([(60, 1200), (120, 2400)])
+    hx = 0.5
+    hy = hx * r.uniform(1.0, 4.0)
+    fr = r.uniform(0.4, 1.0)
+    while True:  # a random walk of offsets, drawn again until it stands
+        xs, x = [], 0.0
+        for i in range(k):
+            x += r.uniform(-0.1, 0.1) * 2 * hx
+            xs.append(x)
+        margin = min(
+            min(sum(xs[j + 1:]) / (k - j - 1) - (max(xs[j], xs[j + 1]) - hx),
+                (min(xs[j], xs[j + 1]) + hx) - sum(xs[j + 1:]) / (k - j - 1))
+            for j in range(k - 1))
+        if margin >= 0.2 * hx:
+            break
+    sc = g.Scene(name, "tower", ["offset tower"])
+    sc.world = "gravity=%s dt=%s steps=%d sleep=off" % (vec(0, -10.0 * s), num(1.0 / dk), steps)
+    sc.bodies.append("box static half-extents=%s position=%s" % (
+        vec(50 * s, 0.5 * s), vec(0, -0.5 * s)))
+    for i, x in enumerate(xs):
+        sc.bodies.append("box half-extents=%s position=%s friction=%s" % (
+            vec(hx * s, hy * s), vec(x * s, (2 * i + 1) * hy * s), num(fr)))
+        sc.checks.append("stay body=%d tol=%s" % (i + 1, num(0.5 * hx * s)))
+    return sc, dict(s=s, k=k, aspect=hy / hx, fr=fr, margin=margin / hx, dt=dk)
+
+
 FAM = [hstack, fastdrop, ballpit, hopper]
-EXTRA = [mstack]  # only when FAMS names them
+EXTRA = [mstack, tower]  # only when FAMS names them
 
 
 def main():
