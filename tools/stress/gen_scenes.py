@@ -413,6 +413,22 @@ def stack_mixed(seed=90029):
     return more_scene("mstack", seed, "stack-mixed", "stack", desc)
 
 
+
+def tower_offset(seed=95029):
+    """A tower of more_scenes.py's tower family (its seed 95029), statically
+    stable, sleeping off: it stands with the default 4 substeps, where
+    the tallest of the family rock until they fall (docs/physics.md, "Tall
+    columns of offset boxes")."""
+    def desc(info):
+        return [
+            "more_scenes.py's tower of seed %d: %d boxes %s times as tall as"
+            % (seed, info["k"], num(info["aspect"])),
+            "wide, each off the one below by up to a tenth of its width,",
+            "friction %s, sleeping off, 20 s at dt = 1/%d. Pass: every box ends"
+            % (num(info["fr"]), info["dt"]),
+            "within half its half-width of its start."]
+    return more_scene("tower", seed, "tower-offset", "stack", desc)
+
 def all_scenes():
     scenes = []
     for h in (10, 20, 40):
@@ -430,6 +446,7 @@ def all_scenes():
     scenes.append(mixed_pour())
     scenes.append(ballpit_mixed())
     scenes.append(stack_mixed())
+    scenes.append(tower_offset())
     for r in (10, 100, 1000):
         scenes.append(heavy_on_light(r))
     for hx in (1.0, 2.5, 5.0):
@@ -447,7 +464,7 @@ def all_scenes():
     scenes.append(pi_billiard(circles=True))
     fast = {"stack-h10-x7.77-dt60", "heavy-on-light-m100", "rod-l5-tilt80",
             "pyramid-b20", "stack-h10-x0-dt60-s100", "pour-mixed-dt30",
-            "ballpit-mixed", "stack-mixed"}
+            "ballpit-mixed", "stack-mixed", "tower-offset"}
     for sc in scenes:
         sc.fast = sc.name in fast
     names = [sc.name for sc in scenes]
