@@ -413,7 +413,6 @@ def stack_mixed(seed=90029):
     return more_scene("mstack", seed, "stack-mixed", "stack", desc)
 
 
-
 def tower_offset(seed=95029):
     """A tower of more_scenes.py's tower family (its seed 95029), statically
     stable, sleeping off: it stands with the default 4 substeps, where
@@ -428,6 +427,7 @@ def tower_offset(seed=95029):
             % (num(info["fr"]), info["dt"]),
             "within half its half-width of its start."]
     return more_scene("tower", seed, "tower-offset", "stack", desc)
+
 
 def all_scenes():
     scenes = []
