@@ -257,15 +257,20 @@ static int cr_polygons(const cr_shape *A, const cr_shape *B, cr_v2 p, cr_rot q,
     unsigned ids[2];
     float seps[2];
 
-    for (j = 0; j < B->count; ++j) {
+    /* (do-while: a polygon has at least 3 vertices, and so the compiler
+     * can see bv[0] is set; a for loop gave -O3 a maybe-uninitialized) */
+    j = 0;
+    do {
         bv[j] = cr_vadd(p, cr_rotate(q, B->verts[j]));
         bn[j] = cr_rotate(q, B->norms[j]);
-    }
+    } while (++j < B->count);
     sa = cr_max_separation(A, bv, B->count, &ea);
     if (cr_gt(sa, reach))
         return 0;
-    for (j = 0; j < A->count; ++j)
+    j = 0;
+    do
         av[j] = cr_inv_rotate(q, cr_vsub(A->verts[j], p));
+    while (++j < A->count);
     sb = cr_max_separation(B, av, A->count, &eb);
     if (cr_gt(sb, reach))
         return 0;

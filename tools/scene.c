@@ -205,7 +205,7 @@ static int parse_world(parser *p, char *rest, scene *s)
     unsigned seen = 0;
     size_t k;
     for (tok = strtok_r(rest, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
-        char *key, *val;
+        char *key = NULL, *val = NULL;
         if (split_kv(p, tok, &key, &val))
             return -1;
         for (k = 0; k < sizeof world_int_keys / sizeof world_int_keys[0]; ++k)
@@ -421,7 +421,7 @@ static int parse_body(parser *p, char *rest, scene *s)
     }
 
     for (tok = strtok_r(NULL, " \t", &save); tok; tok = strtok_r(NULL, " \t", &save)) {
-        char *key, *val;
+        char *key = NULL, *val = NULL;
         if (strcmp(tok, "static") == 0) {
             d->type = CAROM_BODY_STATIC;
             continue;
