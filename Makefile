@@ -13,6 +13,14 @@ CFLAGS  := $(WARN) $(OPT)
 # Tools may use POSIX and libm; the core may not.
 TOOL_CFLAGS := $(CFLAGS) -D_POSIX_C_SOURCE=200809L -Itools
 
+# The compiler and flags a build directory's objects were made with: the
+# stamp changes only when they do, and every object depends on it, so
+# `make CAROM_FLAGS=...` after a plain `make` rebuilds instead of keeping
+# a library of other switches (a program and a library of different
+# switches disagree on the layout of carom's structs).
+FLAGS_STAMP := $(BUILD)/flags.stamp
+FLAGS_NOW := $(CC) $(CPPFLAGS) $(CFLAGS)
+
 LIB_SRC := $(wildcard src/*.c)
 LIB_OBJ := $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
 LIB     := $(BUILD)/libcarom.a
@@ -98,30 +106,30 @@ examples-check: $(EXAMPLES)
 lib: $(LIB)
 cli: $(CLI)
 
-$(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h include/*.h) | $(BUILD)/obj
+$(BUILD)/obj/%.o: src/%.c $(wildcard src/*.h include/*.h) $(FLAGS_STAMP) | $(BUILD)/obj
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
 
 $(LIB): $(LIB_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
-$(BUILD)/profile/obj/%.o: src/%.c $(wildcard src/*.h include/*.h) | $(BUILD)/profile/obj
+$(BUILD)/profile/obj/%.o: src/%.c $(wildcard src/*.h include/*.h) $(FLAGS_STAMP) | $(BUILD)/profile/obj
 	$(CC) $(CPPFLAGS) $(PROF_FLAGS) $(CFLAGS) -c $< -o $@
 
 $(PROF_LIB): $(PROF_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
-$(BUILD)/tools/%.o: tools/%.c $(wildcard tools/*.h include/*.h) | $(BUILD)/tools
+$(BUILD)/tools/%.o: tools/%.c $(wildcard tools/*.h include/*.h) $(FLAGS_STAMP) | $(BUILD)/tools
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -c $< -o $@
 
-$(BUILD)/tools/carom_cli.o: tools/carom_cli.c $(wildcard tools/*.h include/*.h) | $(BUILD)/tools
+$(BUILD)/tools/carom_cli.o: tools/carom_cli.c $(wildcard tools/*.h include/*.h) $(FLAGS_STAMP) | $(BUILD)/tools
 	$(CC) $(CPPFLAGS) $(PROF_FLAGS) $(TOOL_CFLAGS) -c $< -o $@
 
 $(CLI): $(BUILD)/tools/carom_cli.o $(CLI_OPT_OBJ) $(TOOL_OBJ) $(PROF_LIB)
 	$(CC) $(OPT) $(LDFLAGS) $^ -o $@ -lm
 
-$(BUILD)/tools/carom_cli_plain.o: tools/carom_cli.c $(wildcard tools/*.h include/*.h) | $(BUILD)/tools
+$(BUILD)/tools/carom_cli_plain.o: tools/carom_cli.c $(wildcard tools/*.h include/*.h) $(FLAGS_STAMP) | $(BUILD)/tools
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -c $< -o $@
 
 $(CLI_PLAIN): $(BUILD)/tools/carom_cli_plain.o $(CLI_OPT_OBJ) $(TOOL_OBJ) $(LIB)
@@ -129,6 +137,12 @@ $(CLI_PLAIN): $(BUILD)/tools/carom_cli_plain.o $(CLI_OPT_OBJ) $(TOOL_OBJ) $(LIB)
 
 $(BUILD)/obj $(BUILD)/tools $(BUILD)/tests $(BUILD)/profile/obj:
 	mkdir -p $@
+
+$(FLAGS_STAMP): FORCE
+	@mkdir -p $(dir $@)
+	@printf '%s\n' '$(FLAGS_NOW)' | cmp -s - $@ || printf '%s\n' '$(FLAGS_NOW)' > $@
+
+FORCE:
 
 # ---- tests -------------------------------------------------------------------
 
@@ -297,7 +311,7 @@ help:
 	@echo ""
 	@echo "install"
 	@echo "  make install         headers, libcarom.a, libcarom.so.$(VERSION), carom.pc, bin/carom, docs into DESTDIR/PREFIX"
-	@echo "  make uninstall       remove exactly what make install put there"
+	@echo "  make uninstall       remove every file make install put there (the bin/, include/ and lib/ directories stay)"
 	@echo ""
 	@echo "other"
 	@echo "  make deps            install the unit tests' packages with apt-get if missing (when root or sudo)"

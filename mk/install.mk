@@ -55,7 +55,7 @@ pc_rel = $(patsubst $(PREFIX)/%,$${prefix}/%,$(1))
 
 shared: $(SHLIB)
 
-$(BUILD)/pic/obj/%.o: src/%.c $(wildcard src/*.h include/*.h)
+$(BUILD)/pic/obj/%.o: src/%.c $(wildcard src/*.h include/*.h) $(FLAGS_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -fPIC -c $< -o $@
 

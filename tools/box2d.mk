@@ -20,7 +20,7 @@ box2d: $(BOX2D_BIN)
 box2d-deps:
 	@sh tools/ensure-deps.sh box2d
 
-$(BOX2D_BIN): tools/carom_box2d.cpp tools/scene.h tools/cli_options.h $(wildcard include/*.h) \
+$(BOX2D_BIN): tools/carom_box2d.cpp tools/scene.h tools/cli_options.h $(wildcard include/*.h) $(FLAGS_STAMP) \
               $(CLI_OPT_OBJ) $(TOOL_OBJ) $(LIB) | box2d-deps $(BUILD)/tools
 	@pkg-config --exists box2d || { echo "Box2D not found (pkg-config box2d): apt-get install libbox2d-dev g++ pkg-config" >&2; exit 1; }
 	$(CXX) -std=c++17 -O2 -Wall -Wextra $(CPPFLAGS) -Itools $(BOX2D_CFLAGS) \

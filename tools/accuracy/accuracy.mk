@@ -19,7 +19,7 @@
 ACC_DIR  := $(BUILD)/accuracy
 ACC_SRC  := $(addprefix tools/accuracy/,accuracy.c reference.c record.c report.c)
 ACC_HDR  := tools/accuracy/accuracy.h tools/accuracy/reference.h tools/scene.h \
-            $(wildcard include/*.h)
+            $(wildcard include/*.h) $(FLAGS_STAMP)
 ACC_BIN  := $(ACC_DIR)/carom-accuracy
 # The same tool linked with the counting library (PROF_LIB): what the
 # tolerance variants need, their times are not reported.

@@ -28,7 +28,7 @@ BENCH_DIR := $(BUILD)/bench
 BENCH_PLAIN := $(BENCH_DIR)/carom-bench-plain
 BENCH_PLAIN_LIB := $(BENCH_DIR)/plain/libcarom.a
 BENCH_C := tools/bench/bench.c tools/bench/scenes.c tools/bench/engine_carom.c
-BENCH_H := tools/bench/bench.h $(wildcard include/*.h)
+BENCH_H := tools/bench/bench.h $(wildcard include/*.h) $(FLAGS_STAMP)
 BENCH_B2_CFLAGS = $(shell pkg-config --cflags box2d 2>/dev/null)
 BENCH_B2_LIBS = $(shell pkg-config --libs box2d 2>/dev/null)
 # With Box2D v3: its engine; without: the stand-in that says "not built".
@@ -82,7 +82,7 @@ $(BENCH_OPS): $(BENCH_C) $(BENCH_H) $(BENCH_DIR)/engine_none_ops.o $(PROF_LIB)
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) $(BENCH_C) $(BENCH_DIR)/engine_none_ops.o $(PROF_LIB) -o $@ -lm
 
 # The plain-arithmetic library: the Makefile's own rules, in another BUILD.
-$(BENCH_PLAIN_LIB): $(LIB_SRC) $(wildcard src/*.h include/*.h)
+$(BENCH_PLAIN_LIB): $(LIB_SRC) $(wildcard src/*.h include/*.h) $(FLAGS_STAMP)
 	$(MAKE) --no-print-directory -f $(firstword $(MAKEFILE_LIST)) BUILD=$(BENCH_DIR)/plain \
 	    CAROM_FLAGS='$(CAROM_FLAGS) -DCR_ARITH_PLAIN' $(BENCH_PLAIN_LIB)
 

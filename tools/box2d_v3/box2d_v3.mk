@@ -39,7 +39,7 @@ box2d-v3-deps:
 	    echo "lib/libbox2d.a), or B2V3_INC and B2V3_LIB; see tools/box2d_v3/BUILDING.md" >&2; \
 	    exit 1; }
 
-$(B2V3_BIN): tools/box2d_v3/carom_box2d_v3.c tools/scene.h $(wildcard include/*.h) \
+$(B2V3_BIN): tools/box2d_v3/carom_box2d_v3.c tools/scene.h $(wildcard include/*.h) $(FLAGS_STAMP) \
              $(B2V3_SCENE_OBJ) $(LIB) | box2d-v3-deps
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -std=c17 -DNDEBUG -Itools -isystem $(B2V3_INC) \
 	    tools/box2d_v3/carom_box2d_v3.c $(B2V3_SCENE_OBJ) $(LIB) -o $@ \

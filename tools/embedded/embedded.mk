@@ -104,7 +104,7 @@ EMB_TARGETS := m4f m3 m0 m0-mps2
 
 EMB_LIB_SRC := $(wildcard src/*.c)
 EMB_FW_SRC  := $(EMB_DIR)/suite.c $(EMB_DIR)/sizes.c $(EMB_DIR)/fw_main.c $(EMB_DIR)/startup.c
-EMB_HEADERS := $(wildcard src/*.h include/*.h) $(EMB_DIR)/suite.h $(EMB_DIR)/fw.h
+EMB_HEADERS := $(wildcard src/*.h include/*.h) $(FLAGS_STAMP) $(EMB_DIR)/suite.h $(EMB_DIR)/fw.h
 EMB_SCENES  := $(shell awk '!/^[ \t]*(\#|$$)/ {print $$2}' $(EMB_DIR)/suite.list 2>/dev/null)
 
 .PHONY: embedded embedded-host check-embedded check-embedded-negative embedded-insn embedded-size \
@@ -113,7 +113,7 @@ EMB_SCENES  := $(shell awk '!/^[ \t]*(\#|$$)/ {print $$2}' $(EMB_DIR)/suite.list
 # ---- host side: the generator, the suite's data, the x86-64 runner ------------
 
 $(EMB_BUILD)/gen_suite: $(EMB_DIR)/gen_suite.c $(EMB_DIR)/suite.c $(EMB_DIR)/suite.h \
-                        $(TOOL_OBJ) $(LIB) $(wildcard tools/*.h include/*.h)
+                        $(TOOL_OBJ) $(LIB) $(wildcard tools/*.h include/*.h) $(FLAGS_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -I$(EMB_DIR) $(EMB_DIR)/gen_suite.c \
 	    $(EMB_DIR)/suite.c $(TOOL_OBJ) $(LIB) -o $@ $(LDFLAGS) -lm

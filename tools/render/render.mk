@@ -5,7 +5,7 @@
 
 RENDER_OBJ := $(BUILD)/tools/render/render.o
 
-$(RENDER_OBJ): tools/render/render.c tools/render/render.h $(wildcard include/*.h)
+$(RENDER_OBJ): tools/render/render.c tools/render/render.h $(wildcard include/*.h) $(FLAGS_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) -c $< -o $@
 

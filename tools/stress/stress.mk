@@ -38,7 +38,7 @@ BENCH_BOX2D_SCENES ?= pyramid-b20,pyramid-b40,pour-500,pyramid-b20-s0.01,pyramid
 .PHONY: stress stress-check stress-scenes bench-box2d
 
 # Reads scenes with tools/scene.c only (scene_load); no library internals.
-$(STRESS_CHECK): tools/stress/stress_check.c tools/scene.h $(wildcard include/*.h) $(TOOL_OBJ) $(LIB) | $(BUILD)/tools
+$(STRESS_CHECK): tools/stress/stress_check.c tools/scene.h $(wildcard include/*.h) $(FLAGS_STAMP) $(TOOL_OBJ) $(LIB) | $(BUILD)/tools
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) tools/stress/stress_check.c $(TOOL_OBJ) $(LIB) -o $@ -lm
 
 stress: $(CLI_PLAIN) $(STRESS_CHECK) $(STRESS_BOX2D) $(STRESS_V3_BUILD)

@@ -26,7 +26,7 @@ VALIDATE_ARGS = --carom $(CLI) --box2d $(BOX2D_BIN) --checks tools/validation/ch
 
 # Reads scenes with tools/scene.c only (scene_load); links the library for
 # carom's own masses and resolved tolerances, nothing else of it.
-$(VALIDATE): $(VALIDATE_SRC) tools/validation/validate.h tools/scene.h $(wildcard include/*.h) \
+$(VALIDATE): $(VALIDATE_SRC) tools/validation/validate.h tools/scene.h $(wildcard include/*.h) $(FLAGS_STAMP) \
              $(TOOL_OBJ) $(LIB) | $(BUILD)/tools
 	$(CC) $(CPPFLAGS) $(TOOL_CFLAGS) $(VALIDATE_SRC) $(TOOL_OBJ) $(LIB) -o $@ -lm
 
