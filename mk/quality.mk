@@ -99,6 +99,7 @@ QUALITY_CK := CK_FORK=no CK_DEFAULT_TIMEOUT=$(QUALITY_CK_TIMEOUT)
 # ---- coverage ---------------------------------------------------------------
 
 coverage: deps
+	@command -v $(GCOVR) >/dev/null 2>&1 || sh tools/ensure-deps.sh gcovr
 	@command -v $(GCOVR) >/dev/null 2>&1 || \
 	    { echo "coverage: $(GCOVR) not found (apt-get install gcovr)" >&2; exit 1; }
 	@$(COV_SUBMAKE) $(COV_BUILD)/carom_tests $(COV_BUILD)/carom_tests_profile \
@@ -181,6 +182,7 @@ sanitize: deps
 # ---- valgrind ---------------------------------------------------------------
 
 memcheck: $(CLI)
+	@command -v $(VALGRIND) >/dev/null 2>&1 || sh tools/ensure-deps.sh valgrind
 	@command -v $(VALGRIND) >/dev/null 2>&1 || \
 	    { echo "memcheck: $(VALGRIND) not found (apt-get install valgrind)" >&2; exit 1; }
 	@rm -rf $(MEMCHECK_TMP) && mkdir -p $(MEMCHECK_TMP)

@@ -5,6 +5,8 @@
 #   check  -> Check unit-test framework (pkg-config check)
 #   box2d  -> libbox2d-dev 2.4.1 (pkg-config box2d) and a C++ compiler
 #   plot   -> gnuplot
+#   gcovr  -> gcovr (make coverage)
+#   valgrind -> valgrind (make memcheck)
 set -u
 pkgs=""
 for what in "$@"; do
@@ -13,6 +15,8 @@ for what in "$@"; do
     box2d) { pkg-config --exists box2d 2>/dev/null && command -v c++ >/dev/null; } ||
                pkgs="$pkgs libbox2d-dev pkg-config g++" ;;
     plot) command -v gnuplot >/dev/null 2>&1 || pkgs="$pkgs gnuplot-nox" ;;
+    gcovr) command -v gcovr >/dev/null 2>&1 || pkgs="$pkgs gcovr" ;;
+    valgrind) command -v valgrind >/dev/null 2>&1 || pkgs="$pkgs valgrind" ;;
     *) echo "ensure-deps: unknown dependency '$what'" >&2; exit 2 ;;
     esac
 done
