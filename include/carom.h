@@ -351,7 +351,7 @@ typedef enum carom_status {
                                        (carom_world_error_body names it) */
     CAROM_ERR_BAD_DT,             /**< dt outside [CAROM_LIMIT_MIN_DT,
                                        CAROM_LIMIT_MAX_DT] */
-    CAROM_ERR_BAD_CAPACITY,       /**< a capacity <= 0 or too large */
+    CAROM_ERR_BAD_CAPACITY,       /**< a capacity < 0, 0 where one is needed, or too large */
     CAROM_ERR_BUFFER_TOO_SMALL,   /**< caller buffer smaller than needed */
     CAROM_ERR_BAD_PARAMETER,      /**< substeps, max_substeps, iterations
                                        or relax_iterations out of range,
@@ -620,7 +620,9 @@ int carom_world_touch_events_dropped(const carom_world *w);
  * removed or moved by the program since). Sensors are found too.
  * ====================================================================== */
 
-/** Every body whose shape overlaps the box [lo, hi] (m), to fn. */
+/** Every body whose shape overlaps the box [lo, hi] (m), to fn. The box
+ *  is the one lo and hi span: a coordinate of lo above hi's is swapped
+ *  with it, not an error. */
 carom_status carom_world_query_box(const carom_world *w, carom_vec2 lo,
                                    carom_vec2 hi, carom_query_fn fn,
                                    void *ctx);

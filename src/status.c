@@ -11,7 +11,7 @@ static const char *const cr_status_names[CAROM_STATUS_COUNT] = {
     "null pointer",
     "not finite (NaN or infinity)",
     "time step outside [CAROM_LIMIT_MIN_DT, CAROM_LIMIT_MAX_DT]",
-    "capacity must be > 0 and fit in memory",
+    "capacity out of range: negative, 0 where one is needed, or too large for memory",
     "buffer too small",
     "bad parameter (substeps or iterations outside 1..64, max substeps or "
     "relax 0..64, sleep time < 0, grow alloc without release or the reverse)",
