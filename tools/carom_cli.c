@@ -813,9 +813,16 @@ static void print_profile_table(const carom_profile *p, const carom_op_weights *
     /* no work (no bodies, no steps): no shares, not 100 % of nothing */
     printf(" %14.1f %5.1f%%\n\n", total, total > 0 ? 100.0 : 0.0);
     impulse = phase_cost(p, wt, CAROM_PHASE_IMPULSES);
-    printf("cost per step      %14.1f\n", p->steps ? total / (double)p->steps : 0.0);
-    printf("cost per body-step %14.1f\n",
-           p->body_steps ? total / (double)p->body_steps : 0.0);
+    /* a run whose first step failed took no step: its counts are the
+     * failed step's work (executed, then rolled back), per nothing */
+    if (p->steps)
+        printf("cost per step      %14.1f\n", total / (double)p->steps);
+    else
+        printf("cost per step      %14s\n", "(no step taken)");
+    if (p->body_steps)
+        printf("cost per body-step %14.1f\n", total / (double)p->body_steps);
+    else
+        printf("cost per body-step %14s\n", "(no body-steps)");
     if (p->impacts)
         printf("cost per impact    %14.1f  (of which impulse resolution %.1f)\n",
                total / (double)p->impacts, impulse / (double)p->impacts);
