@@ -44,6 +44,13 @@
                                   slop in a substep of this step: pushed
                                   out of an overlap, not at rest
                                   (cr_solver_correct, cr_island_sleep) */
+#define CR_BODY_RESTS 32768u /* events methods: dynamic, and touching a
+                                body at this step's start without closing
+                                on it faster than the impact bound
+                                (cr_solver_levels), or left touching one by
+                                an impact of this step (events.c): what
+                                lands on it inelastically is the solver's
+                                (cr_onto_rest) */
 
 /*
  * Hot state of a body, compact so that the step's loops touch little

@@ -1578,6 +1578,12 @@ static carom_status cr_impact_instant(carom_world *w, int seed, float t,
             cr_solver_activate(w, r->a);
             cr_solver_activate(w, r->b);
             w->reorder = 1;
+            /* both rest now: what lands on them inelastically later in
+             * the step is the solver's (cr_onto_rest in solver.c) */
+            if (w->bodies[r->a].type == CAROM_BODY_DYNAMIC)
+                w->bodies[r->a].flags |= CR_BODY_RESTS;
+            if (w->bodies[r->b].type == CAROM_BODY_DYNAMIC)
+                w->bodies[r->b].flags |= CR_BODY_RESTS;
         }
         /* first-impact: a pair the solve left approaching (an unsettled
          * solve) is not searched again this step, so only the solver can

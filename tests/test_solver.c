@@ -189,6 +189,75 @@ START_TEST(test_off_centre_polygon_impact_conserves_momenta)
 }
 END_TEST
 
+/*
+ * Events methods: a box dropped 0.5 m onto a like box resting on the floor,
+ * restitution 0, lands as a contact of the solver (an inelastic meeting on
+ * a resting body, solver.c): no impact solve at its instant. Four times
+ * heavier than the box under it, or with restitution 0.5, the landing is
+ * an impact taken at its instant, sqrt(2 gap / g) = sqrt(0.1) s after the
+ * release. Every way, the box ends resting on the other, a box height
+ * above it within a slop, and still.
+ */
+START_TEST(test_inelastic_landing_on_a_resting_like_box_is_the_solvers)
+{
+    static const float mass[3] = {1.0f, 4.0f, 1.0f}, e[3] = {0.0f, 0.0f, 0.5f};
+    int k;
+    for (k = 0; k < 3; ++k) {
+        carom_world_def wd = carom_default_world_def();
+        carom_body_def bd = carom_default_body_def();
+        carom_stats st;
+        carom_tolerances tol;
+        const carom_event *ev;
+        int a, b, n, step, first = -1;
+        double t_first = 0.0;
+        tw t;
+        wd.method = CAROM_METHOD_EVENTS;
+        wd.gravity = (carom_vec2){0.0f, -10.0f};
+        wd.dt = 1.0f / 60.0f;
+        wd.max_bodies = 3;
+        t = tw_make(&wd);
+        carom_body_def_set_box(&bd, 5.0f, 0.5f);
+        bd.type = CAROM_BODY_STATIC;
+        bd.position.y = -0.5f;
+        bd.restitution = e[k];
+        tw_add(&t, &bd);
+        bd = carom_default_body_def();
+        carom_body_def_set_box(&bd, 0.5f, 0.5f);
+        bd.mass = 1.0f;
+        bd.restitution = e[k];
+        bd.friction = 0.5f;
+        bd.position.y = 0.5f;
+        a = tw_add(&t, &bd);
+        bd.mass = mass[k];
+        bd.position.y = 2.0f; /* its bottom 0.5 m above a's top */
+        b = tw_add(&t, &bd);
+        for (step = 0; step < 120; ++step) {
+            tw_steps(&t, 1);
+            ev = carom_world_events(t.w, &n);
+            if (first < 0 && n > 0) {
+                first = step;
+                t_first = ev[0].t;
+            }
+        }
+        ck_assert_int_eq(carom_world_get_stats(t.w, &st), CAROM_OK);
+        ck_assert_int_eq(carom_world_get_tolerances(t.w, &tol), CAROM_OK);
+        if (k == 0 && !CAROM_EXACT_PILE_IMPACTS) {
+            ck_assert_int_eq(st.impact_solves, 0);
+        } else {
+            ck_assert_int_ge(st.impact_solves, 1);
+            ck_assert_int_eq(first, 18); /* 18/60 < sqrt(0.1) < 19/60 */
+            ck_assert_close(t_first, sqrt(0.1), 1e-5);
+        }
+        ck_assert_close(tw_state(&t, b).center.y - tw_state(&t, a).center.y, 1.0,
+                        tol.linear_slop);
+        ck_assert_close(tw_state(&t, a).center.y, 0.5, tol.linear_slop);
+        ck_assert(fabs(tw_state(&t, b).velocity.y) < 1e-3);
+        ck_assert(fabs(tw_state(&t, b).velocity.x) < 1e-3);
+        tw_free(&t);
+    }
+}
+END_TEST
+
 START_TEST(test_restitution_mixing_takes_the_larger)
 {
     double va, vb;
@@ -1346,6 +1415,7 @@ Suite *suite_solver(void)
     tcase_add_test(tn, test_corrected_momentum_form_for_unequal_masses);
     tcase_add_test(tn, test_note_stepping_example1_contact_on_step_boundary);
     tcase_add_test(tc, test_off_centre_polygon_impact_conserves_momenta);
+    tcase_add_test(tc, test_inelastic_landing_on_a_resting_like_box_is_the_solvers);
     tcase_add_test(tc, test_restitution_mixing_takes_the_larger);
     tcase_add_test(tc, test_discrete_wall_and_two_balls_in_one_step_keep_the_energy);
     tcase_add_test(tc, test_spinning_ball_stops_on_the_wall_face);

@@ -39,6 +39,9 @@ printf '%8s  CAROM_ENABLE_COMPENSATED=0\n' "$n"
 # default; make check-soft-deep tests it)
 n=$(size_of "-DCAROM_SOFT_DEEP_CONTACTS=1")
 printf '%8s  CAROM_SOFT_DEEP_CONTACTS=1\n' "$n"
+# and every impact of the events methods at its instant (off by default)
+n=$(size_of "-DCAROM_EXACT_PILE_IMPACTS=1")
+printf '%8s  CAROM_EXACT_PILE_IMPACTS=1\n' "$n"
 n=$(size_of "-DCAROM_ENABLE_PROFILE=1")
 printf '%8s  CAROM_ENABLE_PROFILE=1\n' "$n"
 [ "$n" -gt "$base" ] || { echo "check-switches: FAIL: profiling added no code" >&2; fail=1; }
