@@ -71,9 +71,13 @@
                                        met that body and takes Newton's
                                        impulse there (docs/physics.md,
                                        "Continuous collision against
-                                       static bodies");
-                                       off: no check, 7.7 KB less code
-                                       (Cortex-M4F) */
+                                       static bodies"); and a body another
+                                       may push into a static or kinematic
+                                       one has its pairs with it (world.c,
+                                       "Pushed reach"); off: no check, no
+                                       such pairs, 7.7 KB less code
+                                       (Cortex-M4F, before the pushed
+                                       reach) */
 #endif
 
 #ifndef CAROM_ENABLE_SLEEP

@@ -59,8 +59,19 @@ float cr_pair_reach(const carom_world *w, int a, int b, float h)
     const cr_body *A = &w->bodies[a], *B = &w->bodies[b];
     float speed = cr_pair_speed(w, a, b);
     float acc = cr_max(cr_vlen(cr_vsub(B->a, A->a)), cr_max(cr_vlen(A->a), cr_vlen(B->a)));
-    return cr_add(w->scale.spec,
-                  cr_add(cr_mul(speed, h), cr_mul(cr_mul(0.5f, acc), cr_mul(h, h))));
+    float reach = cr_add(w->scale.spec,
+                         cr_add(cr_mul(speed, h), cr_mul(cr_mul(0.5f, acc), cr_mul(h, h))));
+#if CR_CONTINUOUS
+    /* a dynamic body another may push into a static or kinematic one,
+     * inelastic (cr_push_reach in world.c) */
+    if (cr_gt(cr_max(w->info[a].restitution, w->info[b].restitution), 0.0f))
+        return reach;
+    if (A->type != CAROM_BODY_DYNAMIC)
+        reach = cr_add(reach, w->sbody[b].push);
+    else if (B->type != CAROM_BODY_DYNAMIC)
+        reach = cr_add(reach, w->sbody[a].push);
+#endif
+    return reach;
 }
 
 /* Constraint data of contact c from manifold m at the bodies' current

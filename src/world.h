@@ -43,6 +43,8 @@ typedef struct cr_solver_body {
                    level-n body; -1 not supported (or no gravity) */
     cr_v2 a_held; /* events: its drift before the first hold of this */
     float alpha_held; /* substep that changed it */
+    float push;   /* how far a body it may touch could push it this step,
+                     beyond its own motion (cr_push_reach in world.c) */
     unsigned char active; /* has a contact solved this substep */
     unsigned char held;   /* events: an impact's hold changed its drift
                              this substep */
