@@ -52,8 +52,8 @@ static const char usage[] =
     "  --settle LIST      also: piles of these sizes with sleeping on, moving\n"
     "                     (first second) against settled (after every body\n"
     "                     sleeps); '-' for none (default 1000,10000)\n"
-    "  --settle-max S     give up settling after S steps (default 1800) or\n"
-    "  --settle-budget SEC  after SEC s of one engine's settling run (default 90)\n"
+    "  --settle-max S     give up settling after S steps (default 3600) or\n"
+    "  --settle-budget SEC  after SEC s of one engine's settling run (default 120)\n"
     "  --ops              operation counts per body-step (needs the profiling\n"
     "                     build, carom-bench-ops); times nothing\n"
     "  --sleep            sleeping on in the timing suite (default off, as for\n"
@@ -707,8 +707,8 @@ int main(int argc, char **argv)
     su.settle_sizes[0] = 1000;
     su.settle_sizes[1] = 10000;
     su.settle_count = 2;
-    su.settle_max = 1800;
-    su.settle_budget = 90;
+    su.settle_max = 3600;
+    su.settle_budget = 120;
 
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];

@@ -71,7 +71,7 @@ if [ "$quick" = 1 ]; then
     "$bench" --quick --settle 1000 > "$work/time.txt"
 else
     echo "bench.sh: timing (10^2 to 10^5 bodies)" >&2
-    "$bench" --budget 30 --settle 1000,10000 --settle-max 1800 --settle-budget 90 > "$work/time.txt"
+    "$bench" --budget 30 --settle 1000,10000 --settle-max 3600 --settle-budget 120 > "$work/time.txt"
 fi
 
 # 2. operation counts of the same steps (profiling build)
