@@ -217,12 +217,12 @@ static int cr_turns_fast(const carom_world *w, const cr_body *b)
  * solver's (a box dropped 0.5 m onto a resting box, 10 cm off its centre:
  * 2 mm further along, docs/events.md). Taken at their instants, such
  * meetings cost a falling pile of 1000 bodies an island solve each, its
- * rows grown through the pile: 2.4 times the discrete method's time, now
- * 1.5. Unlike masses keep their impacts (the island's exact solve stops a
- * heavy body on a light one at once, where the sweeps take about
- * m_heavy / m_light sweeps to), and so do meetings with static and
- * kinematic bodies and free bodies meeting in flight (validated to their
- * instants).
+ * rows grown through the pile: 2.44 times the discrete method's time, now
+ * 1.44 (docs/benchmarks.md). Unlike masses keep their impacts (the
+ * island's exact solve stops a heavy body on a light one at once, where
+ * the sweeps take about m_heavy / m_light sweeps to), and so do meetings
+ * with static and kinematic bodies and free bodies meeting in flight
+ * (validated to their instants).
  */
 #define CR_ONTO_REST_MASS_RATIO 2.0f
 #define CR_ONTO_REST_REACH 1.0f
