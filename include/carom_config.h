@@ -75,9 +75,8 @@
                                        may push into a static or kinematic
                                        one has its pairs with it (world.c,
                                        "Pushed reach"); off: no check, no
-                                       such pairs, 7.7 KB less code
-                                       (Cortex-M4F, before the pushed
-                                       reach) */
+                                       such pairs, 10.8 KB less code
+                                       (Cortex-M4F) */
 #endif
 
 #ifndef CAROM_ENABLE_SLEEP
