@@ -865,6 +865,30 @@ static int cr_push_candidate(void *ctx, int i)
     return !c->full;
 }
 
+static int cr_pair_before(const cr_pair *p, const cr_pair *q)
+{
+    return p->a < q->a || (p->a == q->a && p->b < q->b);
+}
+
+/* Pairs [0, n0) sorted by (a, b), and [n0, n) appended: all sorted, the
+ * same order in every build (the few appended by insertion, then one
+ * merge through tmp, which holds n). */
+static void cr_pairs_merge_tail(cr_pair *pairs, cr_pair *tmp, int n0, int n)
+{
+    int i, j, k;
+    for (i = n0 + 1; i < n; ++i) {
+        cr_pair p = pairs[i];
+        for (j = i; j > n0 && cr_pair_before(&p, &pairs[j - 1]); --j)
+            pairs[j] = pairs[j - 1];
+        pairs[j] = p;
+    }
+    for (i = 0, j = n0, k = 0; k < n; ++k)
+        tmp[k] = (j >= n || (i < n0 && cr_pair_before(&pairs[i], &pairs[j]))) ? pairs[i++]
+                                                                             : pairs[j++];
+    for (k = 0; k < n; ++k)
+        pairs[k] = tmp[k];
+}
+
 static void cr_push_reach(carom_world *w)
 {
     int i, k, n0 = w->pair_count, moved = 0, nfixed = 0;
@@ -944,9 +968,7 @@ static void cr_push_reach(carom_world *w)
         if (cr_lt(w->sbody[w->awake[k]].push, 0.0f))
             w->sbody[w->awake[k]].push = 0.0f;
     if (w->pair_count > n0) {
-#if CAROM_ENABLE_GRID
-        cr_pairs_sort(w->pairs, w->pair_tmp, w->pair_count, w->bp.count, w->slot_count);
-#endif
+        cr_pairs_merge_tail(w->pairs, w->pair_tmp, n0, w->pair_count);
         cr_pairs_link(w);
     }
 }
