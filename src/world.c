@@ -904,23 +904,25 @@ static void cr_push_reach(carom_world *w)
     }
     if (!moved)
         return; /* no pair of two moving bodies: nothing pushes */
+    /* only inelastic bodies take a push (below) */
+    for (k = 0; k < w->awake_count; ++k)
+        if (w->bodies[w->awake[k]].type == CAROM_BODY_DYNAMIC &&
+            !cr_gt(w->info[w->awake[k]].restitution, 0.0f))
+            break;
+    if (k == w->awake_count)
+        return;
     {
         /* the largest motion of the step, bounded by the largest of each
          * of its terms (cr_motion_bound) */
         float v = 0.0f, a = 0.0f, turn = 0.0f, dt = w->def.dt;
-        int inelastic = 0;
         for (k = 0; k < w->awake_count; ++k) {
             const cr_body *b = &w->bodies[w->awake[k]];
-            inelastic |= b->type == CAROM_BODY_DYNAMIC &&
-                         !cr_gt(w->info[w->awake[k]].restitution, 0.0f);
             v = cr_max(v, cr_add(cr_abs(b->v.x), cr_abs(b->v.y)));
             a = cr_max(a, cr_add(cr_abs(b->a.x), cr_abs(b->a.y)));
             if (!CR_BODY_IS_CIRCLE(b))
                 turn = cr_max(turn, cr_mul(cr_abs(b->w), w->info[w->awake[k]].shape.extent));
         }
         most = cr_add(cr_mul(cr_add(v, turn), dt), cr_mul(cr_mul(0.5f, a), cr_mul(dt, dt)));
-        if (!inelastic)
-            return; /* only inelastic bodies take a push (below) */
     }
     /* two links, each at most (1 + e) <= 2 times what drives it */
     most = cr_mul(4.0f, most);
