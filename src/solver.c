@@ -218,7 +218,7 @@ static int cr_turns_fast(const carom_world *w, const cr_body *b)
  * 2 mm further along, docs/events.md). Taken at their instants, such
  * meetings cost a falling pile of 1000 bodies an island solve each, its
  * rows grown through the pile: 2.44 times the discrete method's time, now
- * 1.44 (docs/benchmarks.md). Unlike masses keep their impacts (the
+ * 1.46 (docs/benchmarks.md). Unlike masses keep their impacts (the
  * island's exact solve stops a heavy body on a light one at once, where
  * the sweeps take about m_heavy / m_light sweeps to), and so do meetings
  * with static and kinematic bodies and free bodies meeting in flight
