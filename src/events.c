@@ -480,18 +480,6 @@ typedef struct cr_regrow_ctx {
     carom_status st;
 } cr_regrow_ctx;
 
-static int cr_has_pair(const carom_world *w, int a, int b)
-{
-    int k = w->pair_head[a];
-    while (k >= 0) {
-        const cr_pair *p = &w->pairs[k];
-        if ((p->a == a && p->b == b) || (p->a == b && p->b == a))
-            return 1;
-        k = p->a == a ? p->next_a : p->next_b;
-    }
-    return 0;
-}
-
 static int cr_regrow_visit(void *ctx, int other)
 {
     cr_regrow_ctx *c = (cr_regrow_ctx *)ctx;

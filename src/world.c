@@ -689,6 +689,19 @@ static int cr_accept_pair(void *ctx, int a, int b)
     return cr_may_collide(w, a, b);
 }
 
+/* Has body a a pair with body b (the linked lists of the pairs)? */
+int cr_has_pair(const carom_world *w, int a, int b)
+{
+    int k = w->pair_head[a];
+    while (k >= 0) {
+        const cr_pair *p = &w->pairs[k];
+        if ((p->a == a && p->b == b) || (p->a == b && p->b == a))
+            return 1;
+        k = p->a == a ? p->next_a : p->next_b;
+    }
+    return 0;
+}
+
 #if CR_CONTINUOUS
 /*
  * Pushed reach (with the continuous guard, CAROM_ENABLE_CONTINUOUS). A
@@ -795,17 +808,12 @@ static int cr_push_pair(void *ctx, int other)
 {
     cr_push_ctx *c = (cr_push_ctx *)ctx;
     carom_world *w = c->w;
-    int a = c->body < other ? c->body : other, b = c->body < other ? other : c->body, k;
+    int a = c->body < other ? c->body : other, b = c->body < other ? other : c->body;
     cr_pair *p;
     if (other == c->body || w->bodies[other].type == CAROM_BODY_DYNAMIC ||
-        cr_gt(w->info[other].restitution, 0.0f) || !cr_may_collide(w, a, b))
+        cr_gt(w->info[other].restitution, 0.0f) || cr_has_pair(w, a, b) ||
+        !cr_may_collide(w, a, b))
         return 1;
-    for (k = w->pair_head[c->body]; k >= 0;) {
-        const cr_pair *q = &w->pairs[k];
-        if (q->a == a && q->b == b)
-            return 1;
-        k = q->a == c->body ? q->next_a : q->next_b;
-    }
     if (w->pair_count >= w->def.max_pairs) {
         c->full = 1;
         return 0;

@@ -244,6 +244,8 @@ void cr_scale_compute(const carom_world *w, cr_scale *s);
 /* May bodies a and b collide: one of them moves, they are not two sensors,
  * and their filter lets them. */
 int cr_may_collide(const carom_world *w, int a, int b);
+/* Has body a a pair with body b this step (through the pair lists)? */
+int cr_has_pair(const carom_world *w, int a, int b);
 
 /* The same whether or not either can move now (a body that moved this step
  * may have fallen asleep at its end). */
