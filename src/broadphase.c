@@ -59,16 +59,7 @@ static void cr_emit(cr_pair_out *o, int a, int b)
     if (o->found++ >= (long)o->cap)
         return;
     p = &o->out[o->found - 1];
-    p->a = a < b ? a : b;
-    p->b = a < b ? b : a;
-    p->contact = -1;
-    p->next_a = p->next_b = -1;
-    p->stamp = 0;
-    p->va = p->vb = -1;
-    p->mark = 0;
-    p->met = 0;
-    p->solved = 0;
-    p->toi = 0.0f;
+    cr_pair_init(p, a < b ? a : b, a < b ? b : a);
 }
 
 #if CAROM_ENABLE_GRID

@@ -20,6 +20,23 @@ typedef struct cr_pair {
                              searched */
 } cr_pair;
 
+/* A new pair record of bodies a < b: no contact, on no body's list, never
+ * searched (the one place a pair's fields are first written: the
+ * broadphase, the events method's regrown boxes, the pushed reach). */
+CR_INLINE void cr_pair_init(cr_pair *p, int a, int b)
+{
+    p->a = a;
+    p->b = b;
+    p->contact = -1;
+    p->next_a = p->next_b = -1;
+    p->stamp = 0;
+    p->va = p->vb = -1;
+    p->mark = 0;
+    p->toi = 0.0f;
+    p->met = 0;
+    p->solved = 0;
+}
+
 #define CR_PAIR_MET 1 /* met in this substep: needs a contact */
 #define CR_PAIR_HIT 2 /* an impact of this step */
 #define CR_PAIR_RESUME 4 /* its time is where an unfinished impact search

@@ -499,14 +499,7 @@ static int cr_regrow_visit(void *ctx, int other)
         return 0;
     }
     p = &w->pairs[w->pair_count];
-    p->a = a;
-    p->b = b;
-    p->contact = -1;
-    p->stamp = 0;
-    p->va = p->vb = -1;
-    p->mark = 0;
-    p->met = 0;
-    p->toi = CR_NEVER;
+    cr_pair_init(p, a, b);
     p->next_a = w->pair_head[a];
     w->pair_head[a] = w->pair_count;
     p->next_b = w->pair_head[b];

@@ -809,7 +809,6 @@ static int cr_push_pair(void *ctx, int other)
     cr_push_ctx *c = (cr_push_ctx *)ctx;
     carom_world *w = c->w;
     int a = c->body < other ? c->body : other, b = c->body < other ? other : c->body;
-    cr_pair *p;
     if (other == c->body || w->bodies[other].type == CAROM_BODY_DYNAMIC ||
         cr_gt(w->info[other].restitution, 0.0f) || cr_has_pair(w, a, b) ||
         !cr_may_collide(w, a, b))
@@ -818,17 +817,7 @@ static int cr_push_pair(void *ctx, int other)
         c->full = 1;
         return 0;
     }
-    p = &w->pairs[w->pair_count++];
-    p->a = a;
-    p->b = b;
-    p->contact = -1;
-    p->next_a = p->next_b = -1;
-    p->stamp = 0;
-    p->va = p->vb = -1;
-    p->mark = 0;
-    p->met = 0;
-    p->solved = 0;
-    p->toi = 0.0f;
+    cr_pair_init(&w->pairs[w->pair_count++], a, b);
     return 1;
 }
 
