@@ -339,6 +339,7 @@ void cr_solver_order(carom_world *w)
     /* the order of the sweeps: moving pairs, then those with a kinematic
      * body, then those with a static one (cr_grounded) */
     w->solve_count = 0;
+    w->reorder = 0;
     for (pass = 0; pass < 3; ++pass)
         for (i = 0; i < w->contact_count; ++i) {
             const cr_contact *c = &w->contacts[i];

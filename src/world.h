@@ -189,7 +189,9 @@ struct carom_world {
     int resumed_searches;     /* impact searches resumed this step after an
                                  instant found the pair still apart */
     int pivot_searches;       /* searches past a pivot this step */
-    int reorder;              /* impacts handed contacts to the solver */
+    int reorder;              /* the event loop (its searches, its impacts)
+                                 handed contacts to the solver since the
+                                 sweep order was last made */
 
     /* results */
     carom_event *events;
