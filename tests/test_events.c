@@ -323,6 +323,63 @@ START_TEST(test_triangle_pivoting_off_a_slow_corner_stays_out_of_the_floor)
 }
 END_TEST
 
+/*
+ * A 0.5 m box tilted by 0.002 rad, standing on one corner on a floor
+ * (friction 1: it pivots without slipping), at dt 1e-6 s. Its weight
+ * turns it about the corner with the constant angular acceleration
+ * alpha = g d / (4/3 (hx^2 + hy^2)) (d: the centre's horizontal lever,
+ * hx cos - hy sin; the corner's inertia 4/3 m (hx^2 + hy^2)), so after
+ * 10 ms it has turned alpha t^2 / 2 and spins at alpha t; by 40 ms it
+ * lies flat. It used to stay on its corner, its turn frozen: the far
+ * corner, 1 mm up and then a fraction of a slop up, was stopped as if
+ * touching at every impact of the near one.
+ */
+START_TEST(test_box_tilted_on_a_corner_at_dt_1e_6_turns_flat)
+{
+    const float hx = 0.25f, hy = 0.25f, th0 = 0.002f, dt = 1.0e-6f;
+    carom_world_def wd = def_for(CAROM_METHOD_EVENTS, -9.81f, dt, 2);
+    carom_body_def bd = carom_default_body_def();
+    double c0 = cos((double)th0), s0 = sin((double)th0);
+    double alpha = 9.81 * ((double)hx * c0 - (double)hy * s0) /
+                   (4.0 / 3.0 * ((double)hx * hx + (double)hy * hy));
+    double t = 0.01, drop, turned;
+    carom_body_state st;
+    tw t_;
+    int id, k;
+    t_ = tw_make(&wd);
+    bd.type = CAROM_BODY_STATIC;
+    bd.friction = 1.0f;
+    carom_body_def_set_box(&bd, 5.0f, 0.5f);
+    bd.position.y = -0.5f;
+    (void)tw_add(&t_, &bd);
+    bd = carom_default_body_def();
+    carom_body_def_set_box(&bd, hx, hy);
+    bd.friction = 1.0f;
+    bd.restitution = 0.0f;
+    /* the lowest corner, (-hx, -hy) turned by th0, on the floor */
+    bd.position.y = (float)((double)hx * s0 + (double)hy * c0);
+    bd.rotation = carom_rot_from_angle(th0);
+    id = tw_add(&t_, &bd);
+    for (k = 0; k < 10000; ++k)
+        ck_assert_int_eq(carom_world_step(t_.w), CAROM_OK);
+    st = tw_state(&t_, id);
+    drop = (double)th0 - atan2((double)st.rotation.s, (double)st.rotation.c);
+    turned = alpha * t * t / 2.0;
+    ck_assert_msg(fabs(drop - turned) <= 0.02 * turned, "turned %g rad in 10 ms, expected %g",
+                  drop, turned);
+    ck_assert_msg(fabs(-(double)st.angular_velocity - alpha * t) <= 0.02 * alpha * t,
+                  "spin %g rad/s after 10 ms, expected %g", (double)st.angular_velocity,
+                  -alpha * t);
+    for (k = 0; k < 30000; ++k)
+        ck_assert_int_eq(carom_world_step(t_.w), CAROM_OK);
+    st = tw_state(&t_, id);
+    ck_assert_msg(fabs(atan2((double)st.rotation.s, (double)st.rotation.c)) <= 1.0e-4,
+                  "still tilted %g rad after 40 ms", atan2((double)st.rotation.s,
+                                                           (double)st.rotation.c));
+    tw_free(&t_);
+}
+END_TEST
+
 /* Penetration depth of two convex polygons (world vertices, counter-
  * clockwise): the smallest overlap of their projections over both edge
  * normal sets (0 if apart). */
@@ -1870,6 +1927,7 @@ Suite *suite_events(void)
     tcase_add_test(tn, test_fast_turning_polygon_never_passes_a_wall);
     tcase_add_test(tn, test_box_spun_by_a_corner_impact_stays_out_of_the_wall);
     tcase_add_test(tn, test_triangle_pivoting_off_a_slow_corner_stays_out_of_the_floor);
+    tcase_add_test(tn, test_box_tilted_on_a_corner_at_dt_1e_6_turns_flat);
     tcase_add_test(tn, test_spinning_boxes_meeting_on_a_pivot_do_not_pass_into_each_other);
     tcase_add_test(tc, test_isolated_bodies_conserve_momentum);
     tcase_add_test(tc, test_overlap_closing_slower_than_rounding_is_pushed_apart);
