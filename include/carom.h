@@ -250,7 +250,7 @@ typedef struct carom_world_def {
     int substeps;             /**< contact substeps per step, 1..64; default
                                    CAROM_DEFAULT_SUBSTEPS (4): the fewest */
     int max_substeps;         /**< 0..64; 0 = CAROM_DEFAULT_MAX_SUBSTEPS
-                                   (16). A step takes more than `substeps`,
+                                   (64). A step takes more than `substeps`,
                                    up to this, where gravity would move a
                                    body from rest by more than one linear
                                    slop of the length unit in a substep:

@@ -322,13 +322,16 @@
 #endif
 
 #ifndef CAROM_DEFAULT_MAX_SUBSTEPS
-#define CAROM_DEFAULT_MAX_SUBSTEPS 16 /**< most substeps a step takes on its
-                                           own (carom_world_def.max_substeps):
-                                           more than `substeps` where gravity
-                                           would move a body from rest by
-                                           more than CAROM_SUBSTEP_FALL_SLOPS
-                                           in one substep (small bodies, long
-                                           steps; docs/physics.md) */
+#define CAROM_DEFAULT_MAX_SUBSTEPS 64 /**< most substeps a step takes on its
+                                           own (carom_world_def.max_substeps,
+                                           at most 64): more than `substeps`
+                                           where gravity would move a body
+                                           from rest by more than
+                                           CAROM_SUBSTEP_FALL_SLOPS in one
+                                           substep (small bodies, long steps)
+                                           or where unlike masses touch
+                                           (docs/physics.md); only those
+                                           steps pay for it */
 #endif
 
 #ifndef CAROM_SUBSTEP_FALL_SLOPS

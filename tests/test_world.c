@@ -812,13 +812,15 @@ START_TEST(test_substeps_grow_where_gravity_outruns_the_slop)
         {10.0f, 1.0f / 60.0f, 0.5f, 4, 0},    /* unit bodies: the default 4 */
         {10.0f, 1.0f / 60.0f, 0.02f, 4, 0},   /* 4 cm: 8.3 -> 9 */
         {40.0f, 1.0f / 60.0f, 0.08f, 4, 0},   /* the same scaled by 4: 9 */
-        {10.0f, 1.0f / 30.0f, 0.02f, 4, 0},   /* 16.7: the default cap */
+        {10.0f, 1.0f / 30.0f, 0.02f, 4, 0},   /* 16.7 -> 17 */
+        {10.0f, 1.0f / 30.0f, 0.02f, 4, 16},  /* a cap of 16: 16 */
         {10.0f, 1.0f / 30.0f, 0.02f, 4, 64},  /* 17 */
         {10.0f, 1.0f / 30.0f, 0.02f, 4, 2},   /* a cap below substeps: 4 */
         {10.0f, 1.0f / 30.0f, 0.02f, 4, 4},   /* fixed at 4 */
         {10.0f, 1.0f / 60.0f, 0.02f, 12, 0},  /* more asked than needed */
         {0.0f, 1.0f / 30.0f, 0.02f, 4, 0},    /* no gravity: 4 */
         {10.0f, 10.0f, 1.0e-3f, 4, 64},       /* far beyond: the cap */
+        {10.0f, 10.0f, 1.0e-3f, 4, 0},        /* the default cap, 64 */
     };
     size_t i;
     for (i = 0; i < sizeof c / sizeof c[0]; ++i) {
@@ -828,7 +830,9 @@ START_TEST(test_substeps_grow_where_gravity_outruns_the_slop)
                       "case %d: want %d substeps", (int)i, want);
     }
     ck_assert_int_eq(want_substeps(10.0, 1.0 / 60.0, 0.02, 4, 0), 9);
-    ck_assert_int_eq(want_substeps(10.0, 1.0 / 30.0, 0.02, 4, 0), 16);
+    ck_assert_int_eq(want_substeps(10.0, 1.0 / 30.0, 0.02, 4, 0), 17);
+    ck_assert_int_eq(want_substeps(10.0, 1.0 / 30.0, 0.02, 4, 16), 16);
+    ck_assert_int_eq(want_substeps(10.0, 10.0, 1.0e-3, 4, 0), 64);
 }
 END_TEST
 
