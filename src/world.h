@@ -60,6 +60,10 @@ typedef struct cr_solver_body {
 #endif
     unsigned char keep;   /* events: its drift keeps what is left of its
                              holds' impulses (cr_hold_keep) */
+    unsigned char braced; /* cannot turn under a load: rests on a braced
+                             body and is held at two points or more (a
+                             circle: one); shock propagation holds only
+                             braced bodies fixed (cr_solver_mark_shocks) */
 } cr_solver_body;
 
 /* An entry of the impact queue: a pair's next impact as computed when the
