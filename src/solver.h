@@ -46,7 +46,7 @@ void cr_solver_shock(carom_world *w, const cr_substep *s);
 
 /* After the warm start: take back, down the support order, the impulses
  * that would lift a body off its support (an impact's, carried over). */
-void cr_solver_unload(carom_world *w);
+void cr_solver_unload(carom_world *w, const cr_substep *s);
 
 /* Cold start (bodies were added): estimate the support impulses of the
  * contacts that have no warm start from the weights they carry. */

@@ -1327,7 +1327,7 @@ static carom_status cr_step(carom_world *w)
         cr_sync_active(w, t0);
         cr_solver_update_deltas(w);
         cr_solver_kick_and_warm(w, &sub);
-        cr_solver_unload(w);
+        cr_solver_unload(w, &sub);
         cr_solver_solve(w, &sub, 1,
                         k == 0 && prime > 0 ? prime : w->def.iterations);
         cr_solver_set_drifts(w, &sub);

@@ -1468,6 +1468,137 @@ START_TEST(test_seesaw_turns_by_the_lever_law_at_any_step)
 }
 END_TEST
 
+/*
+ * A 10 kg box on a 1 kg box, both falling at 5 m/s in contact, land on the
+ * floor with restitution 0: the column stops (Newton: no bounce), and a
+ * kinematic floor starting up at 1 m/s under the same column at rest
+ * carries it at 1 m/s. In the discrete method the warm start of the
+ * second substep carried the impulses that had stopped the column and
+ * threw it up together: it left the landing step rising at 5.8 m/s, and
+ * the elevator threw it up at 2 m/s (the light box at 3).
+ */
+START_TEST(test_column_landing_together_never_bounces)
+{
+    static const carom_method methods[] = {CAROM_METHOD_DISCRETE, CAROM_METHOD_EVENTS};
+    int m, lift;
+    for (m = 0; m < 2; ++m)
+        for (lift = 0; lift < 2; ++lift) {
+            carom_world_def wd = carom_default_world_def();
+            carom_body_def bd = carom_default_body_def();
+            float v = lift ? 0.0f : -5.0f, top = 0.0f;
+            int k, ids[2];
+            tw t;
+            wd.gravity.y = -10.0f;
+            wd.method = methods[m];
+            wd.enable_sleep = 0;
+            wd.max_bodies = 3;
+            t = tw_make(&wd);
+            bd.type = lift ? CAROM_BODY_KINEMATIC : CAROM_BODY_STATIC;
+            carom_body_def_set_box(&bd, 3.0f, 0.5f);
+            bd.position.y = -0.5f;
+            bd.velocity.y = lift ? 1.0f : 0.0f;
+            bd.restitution = 0.0f;
+            (void)tw_add(&t, &bd);
+            bd = carom_default_body_def();
+            carom_body_def_set_box(&bd, 0.5f, 0.5f);
+            bd.restitution = 0.0f;
+            bd.velocity.y = v;
+            bd.position.y = 0.5f;
+            bd.density = 1.0f; /* 1 kg */
+            ids[0] = tw_add(&t, &bd);
+            bd.position.y = 1.5f;
+            bd.density = 10.0f; /* 10 kg */
+            ids[1] = tw_add(&t, &bd);
+            for (k = 0; k < 60; ++k) {
+                ck_assert_int_eq(carom_world_step(t.w), CAROM_OK);
+                top = fmaxf(top, fmaxf(tw_state(&t, ids[0]).velocity.y,
+                                       tw_state(&t, ids[1]).velocity.y));
+                if (!lift && k == 0) {
+                    ck_assert_msg(fabsf(tw_state(&t, ids[0]).velocity.y) <= 0.05f &&
+                                      fabsf(tw_state(&t, ids[1]).velocity.y) <= 0.05f,
+                                  "%s: the column left its landing at %g and %g m/s",
+                                  carom_method_name(methods[m]),
+                                  (double)tw_state(&t, ids[0]).velocity.y,
+                                  (double)tw_state(&t, ids[1]).velocity.y);
+                }
+            }
+            /* landing: never rises; lifted: never faster than the floor
+             * (within a rest speed, 2 g dt = 0.33 m/s) */
+            ck_assert_msg(top <= (lift ? 1.0f : 0.0f) + 0.1f, "%s, %s: rose at %g m/s",
+                          carom_method_name(methods[m]), lift ? "lifted" : "landing",
+                          (double)top);
+            if (lift)
+                for (k = 0; k < 2; ++k)
+                    ck_assert_close(tw_state(&t, ids[k]).velocity.y, 1.0, 0.02);
+            tw_free(&t);
+        }
+}
+END_TEST
+
+/*
+ * A block on the slope of a 30 degree wedge that stands on a frictionless
+ * floor, no friction anywhere: the wedge recoils with
+ * A = m g sin cos / (M + m sin^2) and the horizontal momentum stays 0
+ * (the floor pushes only vertically). Shock propagation held the wedge
+ * fixed under the block (it rests level on the floor): the block's push
+ * along the slope's normal had no reaction, and a 100 kg block on a 1 kg
+ * wedge made 0.97 kg m/s of sideways momentum in 0.3 s.
+ */
+START_TEST(test_wedge_on_a_frictionless_floor_keeps_the_momentum)
+{
+    static const carom_method methods[] = {CAROM_METHOD_DISCRETE, CAROM_METHOD_EVENTS};
+    static const double masses[] = {10.0, 100.0};
+    const double th = 0.52359878, g = 10.0, T = 0.3, mw = 1.0;
+    int m, i;
+    for (m = 0; m < 2; ++m)
+        for (i = 0; i < 2; ++i) {
+            carom_world_def wd = carom_default_world_def();
+            carom_body_def bd = carom_default_body_def();
+            double M = masses[i], A = M * g * sin(th) * cos(th) / (mw + M * sin(th) * sin(th));
+            double V, vx;
+            int k, wedge, block;
+            tw t;
+            wd.gravity.y = -(float)g;
+            wd.method = methods[m];
+            wd.enable_sleep = 0;
+            wd.max_bodies = 3;
+            t = tw_make(&wd);
+            bd.type = CAROM_BODY_STATIC;
+            carom_body_def_set_box(&bd, 20.0f, 0.5f);
+            bd.position.y = -0.5f;
+            bd.friction = 0.0f;
+            (void)tw_add(&t, &bd);
+            bd = carom_default_body_def();
+            bd.shape = CAROM_SHAPE_POLYGON;
+            bd.vertex_count = 3;
+            bd.vertices[1].x = 4.0f;
+            bd.vertices[2].y = 2.3094011f; /* 4 tan 30 */
+            bd.mass = (float)mw;
+            bd.friction = 0.0f;
+            wedge = tw_add(&t, &bd);
+            bd = carom_default_body_def();
+            carom_body_def_set_box(&bd, 0.25f, 0.25f);
+            /* its bottom face on the slope, 2.25 m along it from the top */
+            bd.position.x = 1.625f;
+            bd.position.y = 1.6599f;
+            bd.rotation = carom_rot_from_angle(-(float)th);
+            bd.mass = (float)M;
+            bd.friction = 0.0f;
+            block = tw_add(&t, &bd);
+            for (k = 0; k < 18; ++k)
+                ck_assert_int_eq(carom_world_step(t.w), CAROM_OK);
+            V = tw_state(&t, wedge).velocity.x;
+            vx = tw_state(&t, block).velocity.x;
+            ck_assert_msg(fabs(V + A * T) <= 0.01 * A * T, "%s, %g kg: wedge at %g m/s, expected %g",
+                          carom_method_name(methods[m]), M, V, -A * T);
+            ck_assert_msg(fabs(mw * V + M * vx) <= 1e-3 * mw * A * T,
+                          "%s, %g kg: sideways momentum %g kg m/s", carom_method_name(methods[m]),
+                          M, mw * V + M * vx);
+            tw_free(&t);
+        }
+}
+END_TEST
+
 Suite *suite_solver(void)
 {
     Suite *s = suite_create("solver");
@@ -1502,6 +1633,8 @@ Suite *suite_solver(void)
     tcase_add_loop_test(tr, test_loaded_box_slides_down_a_slope_at_the_coulomb_rate, 0, 8);
     tcase_add_loop_test(tr, test_domino_chain_topples_to_the_lean_of_its_geometry, 0, 2);
     tcase_add_test(tr, test_seesaw_turns_by_the_lever_law_at_any_step);
+    tcase_add_test(tr, test_column_landing_together_never_bounces);
+    tcase_add_test(tr, test_wedge_on_a_frictionless_floor_keeps_the_momentum);
 #if CAROM_ENABLE_KINEMATIC
     tcase_add_test(tr, test_a_slow_kinematic_piston_never_pushes_a_body_into_a_thick_wall);
     tcase_add_test(tr, test_an_elevator_never_pushes_a_box_into_a_static_ceiling);
