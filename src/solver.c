@@ -1882,10 +1882,9 @@ void cr_solver_shock(carom_world *w, const cr_substep *s)
                 if (slanted ? cr_shock_friction(w, c, u, x, n, fixed)
                             : anchored && cr_gt(c->friction, 0.0f))
                     w->sbody[u].walk = 1;
-#else
-                if (!slanted && anchored)
-                    w->sbody[u].walk = 1;
 #endif
+                /* (without friction nothing holds a body sideways: none
+                 * is anchored but static and kinematic ones) */
             }
             k = next;
         }
