@@ -1721,15 +1721,21 @@ static void cr_push_up(carom_world *w, const cr_contact *c, int u, int j, float 
 
 /* The normal velocities, seen from below up, of body u's point j of its
  * supporting contact c (*vu) and of the supporting body's (*vl). */
+/* The normal velocity, seen from below up (upper_b: the upper body is
+ * contact c's b), of the point at arm r of a body moving at (v, om). */
+CR_INLINE float cr_vn_up(const cr_contact *c, int upper_b, cr_v2 r, cr_v2 v, float om)
+{
+    return cr_mul(upper_b ? 1.0f : -1.0f, cr_vdot(cr_point_velocity(v, om, r), c->n));
+}
+
 CR_INLINE void cr_support_vn(const carom_world *w, const cr_contact *c, int u, int j,
                              float *vu, float *vl)
 {
     const cr_contact_point *cp = &c->pts[j];
     const int upper_b = u == c->b;
     const cr_body *U = &w->bodies[u], *L = &w->bodies[upper_b ? c->a : c->b];
-    float sign = upper_b ? 1.0f : -1.0f;
-    *vu = cr_mul(sign, cr_vdot(cr_point_velocity(U->v, U->w, upper_b ? cp->rb : cp->ra), c->n));
-    *vl = cr_mul(sign, cr_vdot(cr_point_velocity(L->v, L->w, upper_b ? cp->ra : cp->rb), c->n));
+    *vu = cr_vn_up(c, upper_b, upper_b ? cp->rb : cp->ra, U->v, U->w);
+    *vl = cr_vn_up(c, upper_b, upper_b ? cp->ra : cp->rb, L->v, L->w);
 }
 
 /* Is the shock support p of body u by `lower` slanted (beyond
@@ -1931,8 +1937,7 @@ static float cr_prewarm_vn(const carom_world *w, const cr_contact *c, int u, int
 #if CAROM_ENABLE_ROTATION
     om = cr_add(om, cr_mul(s->h, U->alpha));
 #endif
-    return cr_mul(upper_b ? 1.0f : -1.0f,
-                  cr_vdot(cr_point_velocity(v, om, upper_b ? c->pts[j].rb : c->pts[j].ra), c->n));
+    return cr_vn_up(c, upper_b, upper_b ? c->pts[j].rb : c->pts[j].ra, v, om);
 }
 
 void cr_solver_unload(carom_world *w, const cr_substep *s)
