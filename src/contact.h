@@ -95,6 +95,10 @@ typedef struct cr_contact_point {
                                   of it is kinematic and turns: its normal
                                   and points are made again during the
                                   step (cr_contacts_turn) */
+#define CR_CONTACT_SPANNED 4096u /* shock propagation: the body resting
+                                    on this contact presses the one below
+                                    within the span of what holds that
+                                    one (cr_solver_mark_shocks) */
 
 typedef struct cr_contact {
     int a, b;          /* body slots, a < b */
