@@ -570,33 +570,38 @@ static int cr_substeps_for(const carom_world *w, float length)
  * of the usual slop per substep: n = ceil(dt sqrt(|g| R / (2 f s))), at
  * most the cap (docs/physics.md, "Unlike masses leaning on each other":
  * ball pits of densities 0.1 to 10 and stacks of mixed densities).
- * Returns 0 where nothing asks for more (no gravity, no such contact).
+ * |g| is the larger acceleration of the pair's two bodies (gravity and
+ * their forces). Returns 0 where nothing asks for more (no load, no such
+ * contact).
  */
 static int cr_substeps_mixed(const carom_world *w)
 {
-    float ratio = CAROM_SUBSTEP_MASS_RATIO, g = cr_vlen(w->def.gravity);
+    float need = 0.0f; /* the largest acceleration times mass ratio */
     int i, cap = w->def.max_substeps > 0 ? w->def.max_substeps : CAROM_DEFAULT_MAX_SUBSTEPS;
-    if (cap <= w->scale.substeps || cr_eq(g, 0.0f))
+    if (cap <= w->scale.substeps)
         return 0;
     for (i = 0; i < w->contact_count; ++i) {
         const cr_contact *c = &w->contacts[i];
-        float a, b;
+        const cr_body *A = &w->bodies[c->a], *B = &w->bodies[c->b];
+        float a = A->inv_m, b = B->inv_m, ratio;
         if (!(c->flags & CR_CONTACT_TOUCHING))
             continue;
-        a = w->bodies[c->a].inv_m;
-        b = w->bodies[c->b].inv_m;
         if (cr_eq(a, 0.0f) || cr_eq(b, 0.0f))
             continue; /* static, kinematic */
-        if (cr_gt(a, cr_mul(ratio, b)))
+        if (cr_gt(a, cr_mul(CAROM_SUBSTEP_MASS_RATIO, b)))
             ratio = cr_div(a, b);
-        else if (cr_gt(b, cr_mul(ratio, a)))
+        else if (cr_gt(b, cr_mul(CAROM_SUBSTEP_MASS_RATIO, a)))
             ratio = cr_div(b, a);
+        else
+            continue;
+        /* what loads the pair: gravity, or the bodies' own forces (a
+         * 1000 kg box pressed by a force of 10 m/s^2 times its mass onto
+         * a 1 kg box, in zero gravity, sank 39 cm into it at 4 substeps) */
+        need = cr_max(need, cr_mul(cr_max(cr_vlen(A->a), cr_vlen(B->a)), ratio));
     }
-    if (!cr_gt(ratio, CAROM_SUBSTEP_MASS_RATIO))
+    if (!cr_gt(need, 0.0f))
         return 0;
-    return cr_substeps_of_q(
-        w, cr_mul(w->def.dt,
-                  cr_sqrt(cr_div(cr_mul(g, ratio), cr_substep_fall(w->scale.length)))));
+    return cr_substeps_of_q(w, cr_mul(w->def.dt, cr_sqrt(cr_div(need, cr_substep_fall(w->scale.length)))));
 }
 
 /* The tolerances of this step (carom_config.h: scale). */
