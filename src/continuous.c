@@ -772,7 +772,12 @@ static int cr_sweep_static(carom_world *w, int i, int s, float dt)
      * floor would gain g (dt - toi) |v_y| of kinetic energy a unit mass,
      * 2e-4 of it at 1000 m/s, with no fall to pay for it) */
     rest_of_step = cr_sub(dt, toi);
-    if (!(b1->flags & CR_BODY_CARRIED)) { /* (a carried body's is taken off) */
+    /* (a carried body's is taken off; one that touched at the step's
+     * start was the contact solver's from then on, and its velocity is
+     * the solver's answer, its bounce included: taking the step's
+     * gravity off it too, a rod 1 m x 2 mm bouncing on one corner with
+     * e = 1, put back where it started, left 2 % richer) */
+    if (!(b1->flags & CR_BODY_CARRIED) && !touching) {
         cr_add_velocity(b1, cr_vscale(cr_neg(rest_of_step), b1->a));
 #if CAROM_ENABLE_ROTATION
         cr_add_angular(b1, cr_mul(cr_neg(rest_of_step), b1->alpha));
