@@ -172,7 +172,9 @@ typedef struct carom_event {
  * Two bodies began or ended touching (within the contact slop, or an
  * impact during the step), or a body began or ended overlapping a sensor.
  * Reported after the step in which it happened; a body's touches end
- * without an event when it is removed.
+ * without an event when it is removed. A body that crosses a sensor
+ * within one step (apart from it at the step's start and end) gets a
+ * begin and an end in that step.
  */
 typedef struct carom_touch_event {
     int body_a, body_b;   /**< ids; body_a has the smaller slot index */
