@@ -494,7 +494,11 @@ carom_status carom_world_remove_body(carom_world *w, int id);
 /** 1 if `id` names a body of the world now, else 0. */
 int carom_body_is_valid(const carom_world *w, int id);
 
-/** Body type (CAROM_BODY_DYNAMIC, STATIC or KINEMATIC). */
+/** Body type (CAROM_BODY_DYNAMIC, STATIC or KINEMATIC). A body's type,
+ * shape and mass are fixed when it is added (no setter): to change them,
+ * remove it and add a new body with the new definition (a new id; its
+ * touches end without an event, and a sleeping island it belonged to
+ * wakes). */
 carom_status carom_body_get_type(const carom_world *w, int id,
                                  carom_body_type *out);
 
