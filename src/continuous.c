@@ -126,18 +126,6 @@ static float cr_reach_along(const cr_shape *s, cr_v2 x, cr_rot q, cr_v2 d)
     return cr_add(cr_vdot(d, x), s->radius);
 }
 
-/* A drift with no acceleration from local time 0: uniform motion on a
- * body's velocity (the paths the guard sweeps). */
-static void cr_drift_still(cr_drift *d)
-{
-    d->t = 0.0f;
-    d->a = cr_v(0.0f, 0.0f);
-    d->alpha = 0.0f;
-    d->version = 0;
-    d->v_pre = cr_v(0.0f, 0.0f);
-    d->w_pre = 0.0f;
-}
-
 /* Grow box b to hold box c too. */
 static void cr_box_merge(cr_box *b, const cr_box *c)
 {

@@ -27,6 +27,19 @@ typedef struct cr_drift {
     float w_pre;
 } cr_drift;
 
+/* A drift with no acceleration from local time 0: uniform motion on a
+ * body's velocity (the ways the continuous guard sweeps, and the sensor
+ * search's). */
+CR_INLINE void cr_drift_still(cr_drift *d)
+{
+    d->t = 0.0f;
+    d->a = cr_v(0.0f, 0.0f);
+    d->alpha = 0.0f;
+    d->version = 0;
+    d->v_pre = cr_v(0.0f, 0.0f);
+    d->w_pre = 0.0f;
+}
+
 /* Pose and velocity of the body at local time s on its drift. */
 void cr_pose_at(const cr_body *b, const cr_drift *d, float s, cr_v2 *x,
                 cr_rot *q);

@@ -1315,14 +1315,10 @@ static int cr_bounce_block(const carom_world *w, cr_contact *c, cr_body *A, cr_b
         return 0;
     z0 = cr_add(p0->pn, p0->pp);
     z1 = cr_add(p1->pn, p1->pp);
-    b1 = cr_sub(cr_add(cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p0->rb),
-                                       cr_point_velocity(A->v, A->w, p0->ra)),
-                               c->n),
+    b1 = cr_sub(cr_add(cr_point_vn(A->v, A->w, B->v, B->w, c, p0),
                        cr_mul(c->restitution, p0->rel_vn)),
                 cr_add(cr_mul(c->k11, z0), cr_mul(c->k12, z1)));
-    b2 = cr_sub(cr_add(cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p1->rb),
-                                       cr_point_velocity(A->v, A->w, p1->ra)),
-                               c->n),
+    b2 = cr_sub(cr_add(cr_point_vn(A->v, A->w, B->v, B->w, c, p1),
                        cr_mul(c->restitution, p1->rel_vn)),
                 cr_add(cr_mul(c->k12, z0), cr_mul(c->k22, z1)));
     if (!cr_lcp2(c->k11, c->k12, c->k22, b1, b2, &x1, &x2))
@@ -1390,9 +1386,7 @@ int cr_solver_restitution(carom_world *w)
                 float vn, d, pb;
                 if (!cr_bounces(w, c, p))
                     continue;
-                vn = cr_vdot(cr_vsub(cr_point_velocity(B->v, B->w, p->rb),
-                                     cr_point_velocity(A->v, A->w, p->ra)),
-                             c->n);
+                vn = cr_point_vn(A->v, A->w, B->v, B->w, c, p);
                 d = cr_neg(cr_mul(p->mass_n, cr_add(vn, cr_mul(c->restitution, p->rel_vn))));
                 /* the total normal impulse stays >= 0 */
                 pb = cr_max(cr_add(p->pp, d), cr_neg(p->pn));
@@ -1612,6 +1606,12 @@ static int cr_braced(const carom_world *w, int i)
     return w->bodies[i].type != CAROM_BODY_DYNAMIC || w->sbody[i].braced;
 }
 
+/* Point k of contact c from body u's centre of mass (u is a or b). */
+CR_INLINE cr_v2 cr_arm_of(const cr_contact *c, int k, int u)
+{
+    return c->a == u ? c->pts[k].ra : c->pts[k].rb;
+}
+
 /* Where contact c meets body u, across `up` (h), from u's centre of mass:
  * the mean of its points weighted by their normal impulses (the line of
  * action of the load it carries), or their plain mean before any. */
@@ -1620,7 +1620,7 @@ static float cr_load_line(const cr_contact *c, int u, cr_v2 h)
     float at = 0.0f, mean = 0.0f, pn = 0.0f;
     int k;
     for (k = 0; k < c->count; ++k) {
-        float x = cr_vdot(c->a == u ? c->pts[k].ra : c->pts[k].rb, h);
+        float x = cr_vdot(cr_arm_of(c, k, u), h);
         at = cr_add(at, cr_mul(c->pts[k].pn, x));
         mean = cr_add(mean, x);
         pn = cr_add(pn, c->pts[k].pn);
@@ -1676,7 +1676,7 @@ void cr_solver_mark_shocks(carom_world *w)
             /* what rests on u is its load, not what holds it */
             if (w->bodies[other].type != CAROM_BODY_DYNAMIC || !cr_supports(c, u, up)) {
                 for (j = 0; j < c->count; ++j) {
-                    float x = cr_vdot(c->a == u ? c->pts[j].ra : c->pts[j].rb, h);
+                    float x = cr_vdot(cr_arm_of(c, j, u), h);
                     lo = held + j == 0 ? x : cr_min(lo, x);
                     hi = held + j == 0 ? x : cr_max(hi, x);
                 }

@@ -20,6 +20,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "integrate.h"
 #include "narrowphase.h"
 #include "toi.h"
 
@@ -170,12 +171,7 @@ static int cr_sensor_crossed(const carom_world *w, const cr_pair *p)
         return 0;
     cr_sensor_way(w, p->a, cr_div(1.0f, dt), &wa);
     cr_sensor_way(w, p->b, cr_div(1.0f, dt), &wb);
-    still.t = 0.0f;
-    still.a = cr_v(0.0f, 0.0f);
-    still.alpha = 0.0f;
-    still.version = 0;
-    still.v_pre = cr_v(0.0f, 0.0f);
-    still.w_pre = 0.0f;
+    cr_drift_still(&still);
     A.s = &w->info[p->a].shape;
     A.b = &wa;
     A.d = &still;
